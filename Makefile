@@ -1,0 +1,56 @@
+# atrito: parallel finite-strain elasto-plastic contact code on PETSc.
+#   make          build bin/atrito and the unit-test programs
+#   make run      install what is missing, build, run the main job
+#   make check    install what is missing, build, run the test suite
+#   make bench    assembly throughput benchmark (writes doc/performance.md)
+
+CC       := mpicc
+PETSC_CFLAGS := $(shell pkg-config --cflags PETSc 2>/dev/null)
+PETSC_LIBS   := $(shell pkg-config --libs PETSc 2>/dev/null)
+HDF5_DIR := /usr/lib/x86_64-linux-gnu/hdf5/openmpi
+CPPFLAGS := -Iinclude $(PETSC_CFLAGS) -I/usr/include/hdf5/openmpi
+CFLAGS   ?= -O3 -g -std=c11 -Wall -Wextra -Wno-unused-parameter -fno-math-errno
+LDLIBS   := $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -lmetis -lm
+PYTHON   := $(shell /usr/bin/python3 -c "import h5py, matplotlib" >/dev/null 2>&1 && echo /usr/bin/python3 || echo python3)
+
+LIB_SRC  := $(filter-out src/main.c,$(wildcard src/*.c))
+LIB_OBJ  := $(LIB_SRC:src/%.c=build/%.o)
+TEST_SRC := $(wildcard tests/test_*.c)
+TEST_BIN := $(TEST_SRC:tests/%.c=bin/%)
+DEPS_STAMP := build/.deps-ok
+
+.PHONY: all deps run check bench clean
+all: bin/atrito $(TEST_BIN)
+
+$(DEPS_STAMP):
+	@bash scripts/install-deps.sh
+	@mkdir -p build && touch $@
+
+deps: $(DEPS_STAMP)
+
+build/%.o: src/%.c $(wildcard include/*.h) | $(DEPS_STAMP)
+	@mkdir -p build
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
+
+build/lib.a: $(LIB_OBJ)
+	ar rcs $@ $^
+
+bin/atrito: build/main.o build/lib.a
+	@mkdir -p bin
+	$(CC) $(CFLAGS) $^ -o $@ $(LDLIBS)
+
+bin/test_%: tests/test_%.c tests/testutil.h build/lib.a $(wildcard include/*.h)
+	@mkdir -p bin
+	$(CC) $(CPPFLAGS) $(CFLAGS) $< build/lib.a -o $@ $(LDLIBS)
+
+run: deps all
+	@bash scripts/run-main.sh
+
+check: deps all
+	@PYTHON=$(PYTHON) bash tests/run_tests.sh
+
+bench: deps all
+	@PYTHON=$(PYTHON) bash scripts/bench_assembly.sh
+
+clean:
+	rm -rf build bin

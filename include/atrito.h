@@ -1,0 +1,120 @@
+/* The problem as the modules share it: the read-only case description, the distributed
+   mesh with its per-rank arrays, the boundary conditions, and the committed/trial history. */
+#ifndef ATRITO_H
+#define ATRITO_H
+#include <petscdmplex.h>
+#include <petscsnes.h>
+#include "material.h"
+#include "fe.h"
+
+#define ATRITO_MAX_BC   32
+#define ATRITO_NAME_LEN 256
+
+/* ---------------------------------------------------------------- case (read-only) */
+typedef enum { MESH_BOX = 0, MESH_BLANK, MESH_GMSH, MESH_INP } MeshSource;
+
+typedef struct {
+  char      name[ATRITO_NAME_LEN];  /* as listed in -bc_names                          */
+  char      set[ATRITO_NAME_LEN];   /* mesh set (label) the condition applies to       */
+  PetscInt  ncomp;                  /* constrained components                          */
+  PetscInt  comp[3];                /* 0 = x, 1 = y, 2 = z                             */
+  PetscReal value[3];               /* prescribed displacement at load parameter 1     */
+} BCSpec;
+
+typedef struct {
+  /* mesh */
+  MeshSource mesh_source;
+  char       mesh_file[PETSC_MAX_PATH_LEN];
+  PetscReal  box_lower[3], box_upper[3];
+  PetscInt   box_cells[3];
+  PetscReal  blank_radius, blank_thickness, blank_core;
+  PetscInt   blank_core_cells, blank_radial_cells, blank_layers;
+  PetscBool  blank_quarter;
+  PetscBool  partition_metis;
+  /* material and element */
+  MaterialParams mat;
+  ElementOptions elem;
+  /* boundary conditions */
+  PetscInt nbc;
+  BCSpec   bc[ATRITO_MAX_BC];
+  /* load stepping */
+  PetscReal load_dt0, load_dt_min, load_dt_max, load_cut, load_grow;
+  PetscInt  load_grow_its, load_max_cuts, load_max_steps;
+  PetscBool load_extrapolate;
+  /* output */
+  char      output_dir[PETSC_MAX_PATH_LEN];
+  PetscInt  output_interval;        /* write fields every N converged steps (0: none)  */
+  PetscBool thickness_output;
+  PetscReal thickness_dir[3];       /* reference sheet normal for the thickness strain */
+} Case;
+
+/* ---------------------------------------------------------------- problem */
+typedef struct {
+  PetscInt  nset;     /* local dofs constrained by this BC             */
+  PetscInt *loff;     /* their offsets in the local vector             */
+  PetscReal *val;     /* their values at load parameter 1              */
+  PetscInt  nown;     /* owned vertices of the set (for reactions)     */
+  PetscInt *own;      /* local vertex indices                          */
+} BCData;
+
+typedef struct {
+  MPI_Comm    comm;
+  PetscMPIInt rank, size;
+  const Case *cs;
+
+  /* mesh */
+  DM        dm;        /* distributed mesh, section with the Dirichlet constraints     */
+  DM        dmr;       /* same mesh, unconstrained section (reactions)                 */
+  PetscInt  nc;        /* local cells                                                  */
+  PetscInt  nv;        /* local vertices (owned and ghost)                             */
+  PetscInt  vstart;    /* first vertex point                                           */
+  PetscInt *cv;        /* nc*8 local vertex indices, standard hex8 order               */
+  PetscReal *X;        /* nv*3 reference coordinates                                   */
+  PetscInt *vloff;     /* nv: offset of the vertex's 3 dofs in the local vector        */
+  PetscInt *cgdof;     /* nc*24 global dof of each element dof, -1 where constrained   */
+  PetscBool *vowned;   /* nv                                                           */
+  PetscInt *node_id, *elem_id; /* source ids (1-based) per local vertex / cell          */
+  PetscInt  nv_global, ne_global;
+
+  /* boundary conditions */
+  PetscInt nbc;
+  BCData   bc[ATRITO_MAX_BC];
+
+  /* history: committed and trial, nc*HEX8_NQP*MAT_NHIST each */
+  PetscReal *hist_c, *hist_t;
+  ElementInfo *einfo;  /* per cell, from the last evaluation at a converged state */
+
+  /* solution */
+  Vec       U, Uc, Uprev;  /* current iterate, committed, previous committed (global)    */
+  Vec       Uloc, Floc;    /* local work vectors                                        */
+  PetscReal lambda;        /* load parameter at which the residual is evaluated         */
+  PetscInt  ndomain_err;   /* failed element evaluations in the last residual           */
+  PetscInt  bad_cell_id;   /* source id of the first failing element, for messages      */
+  PetscInt  bad_status;
+
+  PetscLogEvent ev_residual, ev_jacobian;
+} Problem;
+
+/* case.c */
+PetscErrorCode CaseRead(MPI_Comm comm, Case *cs);
+
+/* mesh.c: build, partition, distribute, label and index the mesh */
+PetscErrorCode ProblemCreateMesh(Problem *pb);
+PetscErrorCode ProblemDestroyMesh(Problem *pb);
+
+/* solver.c */
+PetscErrorCode ProblemSetUp(Problem *pb);
+PetscErrorCode ProblemSolve(Problem *pb);
+PetscErrorCode ProblemDestroy(Problem *pb);
+PetscErrorCode ProblemResidualLocal(Problem *pb, Vec U, PetscReal lambda);
+
+/* history.c: per-step CSV (rank 0), written whole rows only */
+PetscErrorCode HistoryOpen(Problem *pb, FILE **fp);
+PetscErrorCode HistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscReal time, PetscInt its, PetscReal r0, PetscReal r);
+PetscErrorCode ProblemReactions(Problem *pb, PetscReal (*R)[3]);
+
+/* util.c */
+/* After work done on rank 0 alone (under PetscReturnErrorHandler), raise its error, with its
+   message, on every rank of comm; a no-op when ierr_root is 0. */
+PetscErrorCode AtritoRootError(MPI_Comm comm, PetscErrorCode ierr_root);
+#endif

@@ -1,0 +1,190 @@
+/* Trilinear hexahedron with F-bar, finite strain, exact tangent.
+
+   Weak form (reference volume, Kirchhoff stress of the modified gradient):
+     f_ai = sum_qp w detJ0  taubar_ij g_aj,     g_aj = dN_a/dX_K Finv_Kj  (spatial gradient)
+     Fbar = alpha F,  alpha = (J0/J)^(1/3),  J0 = det F at the element centroid.
+   Linearisation with respect to nodal displacements u_bm:
+     d Fbar_kL = alpha [ delta_km dN_b/dX_L + 1/3 (g0_bm - g_bm) F_kL ]
+     d g_aj    = - g_am g_bj
+   so that
+     K_ai,bm = sum_qp w detJ0 [ alpha g_aj Tau_ij,mL dN_b/dX_L
+                               + alpha/3 (g_aj Tau_ij,kL F_kL) (g0_bm - g_bm)
+                               - taubar_ij g_bj g_am ]
+   with Tau = d tau / d F evaluated at Fbar (material kernel). Without F-bar alpha = 1 and
+   the second term vanishes. */
+#include <math.h>
+#include <string.h>
+#include "fe.h"
+#include "tensor.h"
+
+#define GP 0.57735026918962576451
+
+const double hex8_nodes[8][3] = {
+  {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+  {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}
+};
+
+const double hex8_gauss[HEX8_NQP][3] = {
+  {-GP, -GP, -GP}, {GP, -GP, -GP}, {GP, GP, -GP}, {-GP, GP, -GP},
+  {-GP, -GP, GP},  {GP, -GP, GP},  {GP, GP, GP},  {-GP, GP, GP}
+};
+
+void hex8_shape(const double xi[3], double N[8], double dN[8][3])
+{
+  for (int a = 0; a < 8; a++) {
+    const double s = hex8_nodes[a][0], t = hex8_nodes[a][1], r = hex8_nodes[a][2];
+    const double fx = 1 + s * xi[0], fy = 1 + t * xi[1], fz = 1 + r * xi[2];
+    if (N) N[a] = 0.125 * fx * fy * fz;
+    if (dN) {
+      dN[a][0] = 0.125 * s * fy * fz;
+      dN[a][1] = 0.125 * t * fx * fz;
+      dN[a][2] = 0.125 * r * fx * fy;
+    }
+  }
+}
+
+double hex8_gradient(const double X[8][3], const double xi[3], double dNdX[8][3])
+{
+  double dN[8][3], Jm[9] = {0}, Ji[9];
+  hex8_shape(xi, NULL, dN);
+  /* Jm_iK = dX_i / dxi_K */
+  for (int a = 0; a < 8; a++)
+    for (int i = 0; i < 3; i++)
+      for (int k = 0; k < 3; k++) Jm[3 * i + k] += X[a][i] * dN[a][k];
+  const double det = t3_inv(Jm, Ji);
+  if (det <= 0) return det;
+  /* dN/dX_i = dN/dxi_K dxi_K/dX_i = dN/dxi_K Ji_Ki */
+  for (int a = 0; a < 8; a++)
+    for (int i = 0; i < 3; i++) dNdX[a][i] = dN[a][0] * Ji[i] + dN[a][1] * Ji[3 + i] + dN[a][2] * Ji[6 + i];
+  return det;
+}
+
+void hex8_defgrad(const double u[8][3], const double dNdX[8][3], double F[9])
+{
+  for (int i = 0; i < 3; i++)
+    for (int K = 0; K < 3; K++) {
+      double s = (i == K) ? 1.0 : 0.0;
+      for (int a = 0; a < 8; a++) s += u[a][i] * dNdX[a][K];
+      F[3 * i + K] = s;
+    }
+}
+
+double hex8_min_jacobian(const double X[8][3])
+{
+  double dNdX[8][3], m = INFINITY;
+  for (int q = 0; q < HEX8_NQP; q++) {
+    const double d = hex8_gradient(X, hex8_gauss[q], dNdX);
+    if (d < m) m = d;
+  }
+  for (int q = 0; q < 8; q++) {
+    const double d = hex8_gradient(X, hex8_nodes[q], dNdX);
+    if (d < m) m = d;
+  }
+  return m;
+}
+
+/* g_aj = dN_a/dX_K Finv_Kj */
+static void spatial_gradient(const double dNdX[8][3], const double Finv[9], double g[8][3])
+{
+  for (int a = 0; a < 8; a++)
+    for (int j = 0; j < 3; j++) g[a][j] = dNdX[a][0] * Finv[j] + dNdX[a][1] * Finv[3 + j] + dNdX[a][2] * Finv[6 + j];
+}
+
+int hex8_element(const MaterialParams *mp, const ElementOptions *eo, const double X[8][3], const double u[8][3], const double hn[][MAT_NHIST], double fe[24], double *ke, double h[][MAT_NHIST], ElementInfo *info)
+{
+  static const double centre[3] = {0, 0, 0};
+  double dNdX0[8][3], F0[9], F0inv[9], g0[8][3], J0 = 1.0;
+  double dtau[81], tau[9];
+  int    nplastic = 0;
+
+  memset(fe, 0, 24 * sizeof(double));
+  if (ke) memset(ke, 0, 24 * 24 * sizeof(double));
+  if (info) memset(info, 0, sizeof(*info));
+
+  if (eo->fbar || info) {
+    if (hex8_gradient(X, centre, dNdX0) <= 0) return MAT_ERR_JACOBIAN;
+    hex8_defgrad(u, dNdX0, F0);
+    J0 = t3_inv(F0, F0inv);
+    if (J0 <= 0) return MAT_ERR_JACOBIAN;
+    spatial_gradient(dNdX0, F0inv, g0);
+    if (info) memcpy(info->F0, F0, sizeof(F0));
+  }
+
+  for (int q = 0; q < HEX8_NQP; q++) {
+    double dNdX[8][3], F[9], Finv[9], Fb[9], g[8][3];
+    const double detX = hex8_gradient(X, hex8_gauss[q], dNdX);
+    if (detX <= 0) return MAT_ERR_JACOBIAN;
+    hex8_defgrad(u, dNdX, F);
+    const double J = t3_inv(F, Finv);
+    if (J <= 0) return MAT_ERR_JACOBIAN;
+    spatial_gradient(dNdX, Finv, g);
+
+    double alpha = 1.0;
+    if (eo->fbar) alpha = cbrt(J0 / J);
+    for (int k = 0; k < 9; k++) Fb[k] = alpha * F[k];
+
+    int plastic = 0;
+    const int st = MaterialUpdate(mp, Fb, hn[q], tau, ke ? dtau : NULL, h[q], &plastic);
+    if (st != MAT_OK) return st;
+    nplastic += plastic;
+    const double w = detX; /* unit Gauss weights */
+
+    /* internal force */
+    for (int a = 0; a < 8; a++)
+      for (int i = 0; i < 3; i++) fe[3 * a + i] += w * (tau[3 * i] * g[a][0] + tau[3 * i + 1] * g[a][1] + tau[3 * i + 2] * g[a][2]);
+
+    if (info) {
+      const double Jb = alpha * alpha * alpha * J, s[6] = {tau[0] / Jb, tau[4] / Jb, tau[8] / Jb, tau[1] / Jb, tau[5] / Jb, tau[2] / Jb};
+      const double p = (s[0] + s[1] + s[2]) / 3.0, d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
+      info->mises += sqrt(1.5 * (d0 * d0 + d1 * d1 + d2 * d2 + 2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]))) / HEX8_NQP;
+      info->ep += h[q][MAT_HIST_EP] / HEX8_NQP;
+      for (int k = 0; k < 6; k++) info->sigma[k] += s[k] / HEX8_NQP;
+    }
+
+    if (!ke) continue;
+    /* Hm[ij][b][m] = alpha Tau_ij,mL dN_b/dX_L */
+    double Hm[9][8][3];
+    for (int ij = 0; ij < 9; ij++) {
+      const double *T = dtau + 9 * ij;
+      for (int b = 0; b < 8; b++)
+        for (int m = 0; m < 3; m++) Hm[ij][b][m] = alpha * (T[3 * m] * dNdX[b][0] + T[3 * m + 1] * dNdX[b][1] + T[3 * m + 2] * dNdX[b][2]);
+    }
+    /* material part */
+    for (int a = 0; a < 8; a++)
+      for (int i = 0; i < 3; i++) {
+        double *row = ke + (3 * a + i) * 24;
+        const double ga0 = w * g[a][0], ga1 = w * g[a][1], ga2 = w * g[a][2];
+        const double *H0 = &Hm[3 * i][0][0], *H1 = &Hm[3 * i + 1][0][0], *H2 = &Hm[3 * i + 2][0][0];
+        for (int bm = 0; bm < 24; bm++) row[bm] += ga0 * H0[bm] + ga1 * H1[bm] + ga2 * H2[bm];
+      }
+    /* geometric part: - taubar_ij g_bj g_am */
+    double s_[8][3];
+    for (int b = 0; b < 8; b++)
+      for (int i = 0; i < 3; i++) s_[b][i] = w * (tau[3 * i] * g[b][0] + tau[3 * i + 1] * g[b][1] + tau[3 * i + 2] * g[b][2]);
+    for (int a = 0; a < 8; a++)
+      for (int i = 0; i < 3; i++) {
+        double *row = ke + (3 * a + i) * 24;
+        for (int b = 0; b < 8; b++)
+          for (int m = 0; m < 3; m++) row[3 * b + m] -= s_[b][i] * g[a][m];
+      }
+    /* F-bar coupling: alpha/3 (g_aj TF_ij) (g0_bm - g_bm) */
+    if (eo->fbar) {
+      double TF[9];
+      for (int ij = 0; ij < 9; ij++) {
+        double t = 0;
+        for (int kL = 0; kL < 9; kL++) t += dtau[9 * ij + kL] * F[kL];
+        TF[ij] = t;
+      }
+      const double c = w * alpha / 3.0;
+      for (int a = 0; a < 8; a++)
+        for (int i = 0; i < 3; i++) {
+          const double v = c * (g[a][0] * TF[3 * i] + g[a][1] * TF[3 * i + 1] + g[a][2] * TF[3 * i + 2]);
+          double      *row = ke + (3 * a + i) * 24;
+          for (int b = 0; b < 8; b++)
+            for (int m = 0; m < 3; m++) row[3 * b + m] += v * (g0[b][m] - g[b][m]);
+        }
+    }
+  }
+  if (info) info->nplastic = nplastic;
+  return MAT_OK;
+}

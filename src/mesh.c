@@ -1,0 +1,539 @@
+/* Mesh module: the serial mesh on rank 0 (generator, .inp deck or Gmsh file), its METIS
+   partition handed to DMPlex through the shell partitioner, distribution, boundary-set
+   labels, source ids, and the per-rank index arrays of the element and node kernels. */
+#include <string.h>
+#include <metis.h>
+#include <petscsf.h>
+#include "atrito.h"
+#include "meshgen.h"
+
+/* DMPlex lists a hexahedron's bottom face with its normal pointing into the cell; the standard
+   order lists it counter-clockwise seen from above. The map is an involution: swap 1 and 3. */
+static const PetscInt hex_plex_to_std[8] = {0, 3, 2, 1, 4, 5, 6, 7};
+
+/* Gmsh file through DMPlex's reader, converted to plain arrays. Every label (physical group)
+   becomes a node set holding the vertices of its points' closures: named after the label, with
+   "_<value>" appended when the label has several values; blanks become underscores. */
+static PetscErrorCode MeshDataReadGmsh(const char *file, MeshData *m)
+{
+  DM              dm;
+  PetscInt        cStart, cEnd, vStart, vEnd, nlabels;
+  Vec             coords;
+  const PetscScalar *xa;
+  FILE           *fp;
+
+  PetscFunctionBeginUser;
+  fp = fopen(file, "r");
+  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open mesh file '%s' (-mesh_file)", file);
+  fclose(fp);
+  PetscCall(PetscMemzero(m, sizeof(*m)));
+  PetscCall(DMPlexCreateGmshFromFile(PETSC_COMM_SELF, file, PETSC_TRUE, &dm));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  m->ne = cEnd - cStart;
+  m->nv = vEnd - vStart;
+  PetscCheck(m->ne > 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "mesh file '%s' holds no 3D cells", file);
+  PetscCall(PetscMalloc5(3 * m->nv, &m->X, 8 * m->ne, &m->conn, m->nv, &m->node_id, m->ne, &m->elem_id, 1, &m->elsets));
+  PetscCall(DMGetCoordinatesLocal(dm, &coords));
+  PetscCall(VecGetArrayRead(coords, &xa));
+  for (PetscInt i = 0; i < 3 * m->nv; i++) m->X[i] = PetscRealPart(xa[i]);
+  PetscCall(VecRestoreArrayRead(coords, &xa));
+  for (PetscInt v = 0; v < m->nv; v++) m->node_id[v] = v + 1;
+  for (PetscInt c = cStart; c < cEnd; c++) {
+    DMPolytopeType ct;
+    PetscInt      *cl = NULL, ncl, k = 0, vv[8];
+    PetscCall(DMPlexGetCellType(dm, c, &ct));
+    PetscCheck(ct == DM_POLYTOPE_HEXAHEDRON, PETSC_COMM_SELF, PETSC_ERR_SUP, "mesh file '%s': cell %" PetscInt_FMT " is a %s; only 8-node hexahedra are supported", file, c - cStart + 1, DMPolytopeTypes[ct]);
+    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &cl));
+    for (PetscInt i = 0; i < ncl; i++)
+      if (cl[2 * i] >= vStart && cl[2 * i] < vEnd && k < 8) vv[k++] = cl[2 * i] - vStart;
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &cl));
+    for (PetscInt i = 0; i < 8; i++) m->conn[8 * (c - cStart) + i] = vv[hex_plex_to_std[i]];
+    m->elem_id[c - cStart] = c - cStart + 1;
+  }
+  /* element set "all" */
+  m->nelset = 1;
+  PetscCall(PetscStrncpy(m->elsets[0].name, "all", sizeof(m->elsets[0].name)));
+  m->elsets[0].n = m->ne;
+  PetscCall(PetscMalloc1(m->ne, &m->elsets[0].idx));
+  for (PetscInt c = 0; c < m->ne; c++) m->elsets[0].idx[c] = c;
+  /* labels to node sets */
+  PetscCall(DMGetNumLabels(dm, &nlabels));
+  for (PetscInt l = 0; l < nlabels; l++) {
+    const char     *lname;
+    DMLabel         label;
+    IS              vis;
+    const PetscInt *vals;
+    PetscInt        nvals;
+    PetscCall(DMGetLabelName(dm, l, &lname));
+    if (!strcmp(lname, "depth") || !strcmp(lname, "celltype")) continue;
+    PetscCall(DMGetLabel(dm, lname, &label));
+    PetscCall(DMLabelGetValueIS(label, &vis));
+    PetscCall(ISGetLocalSize(vis, &nvals));
+    PetscCall(ISGetIndices(vis, &vals));
+    for (PetscInt iv = 0; iv < nvals; iv++) {
+      IS              pis;
+      const PetscInt *pts;
+      PetscInt        np, nmark = 0;
+      PetscBool      *mark;
+      MeshSet        *s;
+      PetscCall(PetscCalloc1(m->nv, &mark));
+      PetscCall(DMLabelGetStratumIS(label, vals[iv], &pis));
+      if (pis) {
+        PetscCall(ISGetLocalSize(pis, &np));
+        PetscCall(ISGetIndices(pis, &pts));
+        for (PetscInt ip = 0; ip < np; ip++) {
+          PetscInt *cl = NULL, ncl;
+          PetscCall(DMPlexGetTransitiveClosure(dm, pts[ip], PETSC_TRUE, &ncl, &cl));
+          for (PetscInt i = 0; i < ncl; i++)
+            if (cl[2 * i] >= vStart && cl[2 * i] < vEnd) mark[cl[2 * i] - vStart] = PETSC_TRUE;
+          PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[ip], PETSC_TRUE, &ncl, &cl));
+        }
+        PetscCall(ISRestoreIndices(pis, &pts));
+        PetscCall(ISDestroy(&pis));
+      }
+      PetscCall(PetscRealloc(sizeof(MeshSet) * (m->nnset + 1), &m->nsets));
+      s = &m->nsets[m->nnset++];
+      if (nvals > 1) PetscCall(PetscSNPrintf(s->name, sizeof(s->name), "%s_%" PetscInt_FMT, lname, vals[iv]));
+      else PetscCall(PetscStrncpy(s->name, lname, sizeof(s->name)));
+      for (char *ch = s->name; *ch; ch++)
+        if (*ch == ' ') *ch = '_';
+      for (PetscInt v = 0; v < m->nv; v++) nmark += mark[v];
+      s->n = nmark;
+      PetscCall(PetscMalloc1(nmark, &s->idx));
+      nmark = 0;
+      for (PetscInt v = 0; v < m->nv; v++)
+        if (mark[v]) s->idx[nmark++] = v;
+      PetscCall(PetscFree(mark));
+    }
+    PetscCall(ISRestoreIndices(vis, &vals));
+    PetscCall(ISDestroy(&vis));
+  }
+  PetscCall(DMDestroy(&dm));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode MeshDataLoad(const Case *cs, MeshData *m)
+{
+  PetscFunctionBeginUser;
+  switch (cs->mesh_source) {
+  case MESH_BOX:
+    PetscCall(MeshDataCreateBox(cs->box_lower, cs->box_upper, cs->box_cells, m));
+    break;
+  case MESH_BLANK:
+    PetscCall(MeshDataCreateBlank(cs->blank_radius, cs->blank_thickness, cs->blank_core, cs->blank_core_cells, cs->blank_radial_cells, cs->blank_layers, cs->blank_quarter, m));
+    break;
+  case MESH_INP:
+    PetscCall(MeshDataReadInp(cs->mesh_file, m));
+    break;
+  case MESH_GMSH:
+    PetscCall(MeshDataReadGmsh(cs->mesh_file, m));
+    break;
+  }
+  /* every cell must have a positive Jacobian at its Gauss points and corners */
+  for (PetscInt e = 0; e < m->ne; e++) {
+    double X[8][3];
+    for (int a = 0; a < 8; a++)
+      for (int i = 0; i < 3; i++) X[a][i] = m->X[3 * m->conn[8 * e + a] + i];
+    PetscCheck(hex8_min_jacobian(X) > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "element id %" PetscInt_FMT " is inverted or degenerate (non-positive Jacobian)", m->elem_id[e]);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* METIS partition of the cell (dual) graph, on rank 0 */
+static PetscErrorCode PartitionMetis(const MeshData *m, PetscMPIInt size, PetscInt *sizes, PetscInt *points)
+{
+  idx_t  ne = (idx_t)m->ne, nn = (idx_t)m->nv, ncommon = 4, nparts = (idx_t)size, objval, opts[METIS_NOPTIONS];
+  idx_t *eptr, *eind, *epart, *npart;
+  int    st;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc4(ne + 1, &eptr, 8 * ne, &eind, ne, &epart, nn, &npart));
+  for (idx_t e = 0; e <= ne; e++) eptr[e] = 8 * e;
+  for (idx_t i = 0; i < 8 * ne; i++) eind[i] = (idx_t)m->conn[i];
+  METIS_SetDefaultOptions(opts);
+  opts[METIS_OPTION_NUMBERING] = 0;
+  opts[METIS_OPTION_SEED]      = 7;
+  st = METIS_PartMeshDual(&ne, &nn, eptr, eind, NULL, NULL, &ncommon, &nparts, NULL, opts, &objval, epart, npart);
+  PetscCheck(st == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartMeshDual failed (status %d) on %" PetscInt_FMT " cells into %d parts", st, m->ne, size);
+  for (PetscMPIInt r = 0; r < size; r++) sizes[r] = 0;
+  for (idx_t e = 0; e < ne; e++) sizes[epart[e]]++;
+  {
+    PetscInt *off;
+    PetscCall(PetscCalloc1(size + 1, &off));
+    for (PetscMPIInt r = 0; r < size; r++) off[r + 1] = off[r] + sizes[r];
+    for (idx_t e = 0; e < ne; e++) points[off[epart[e]]++] = (PetscInt)e;
+    PetscCall(PetscFree(off));
+  }
+  PetscCall(PetscFree4(eptr, eind, epart, npart));
+  PetscFunctionReturn(0);
+}
+
+/* Vertices of label `set` (any points: their closures), marked in mark[nv] */
+static PetscErrorCode MarkSetVertices(Problem *pb, const char *set, PetscBool *mark, PetscBool *found)
+{
+  DMLabel  label;
+  PetscInt pStart, pEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLabel(pb->dm, set, &label));
+  *found = label ? PETSC_TRUE : PETSC_FALSE;
+  if (!label) PetscFunctionReturn(0);
+  PetscCall(DMPlexGetChart(pb->dm, &pStart, &pEnd));
+  for (PetscInt p = pStart; p < pEnd; p++) {
+    PetscInt val, *cl = NULL, ncl;
+    PetscCall(DMLabelGetValue(label, p, &val));
+    if (val < 0) continue;
+    PetscCall(DMPlexGetTransitiveClosure(pb->dm, p, PETSC_TRUE, &ncl, &cl));
+    for (PetscInt i = 0; i < ncl; i++) {
+      const PetscInt q = cl[2 * i] - pb->vstart;
+      if (q >= 0 && q < pb->nv) mark[q] = PETSC_TRUE;
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(pb->dm, p, PETSC_TRUE, &ncl, &cl));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Section with three displacement dofs per vertex and the Dirichlet constraints */
+static PetscErrorCode CreateSections(Problem *pb)
+{
+  const Case  *cs = pb->cs;
+  PetscSection s, sr;
+  PetscInt     pStart, pEnd;
+  PetscInt    *cmask;     /* per vertex: bit c set when component c is constrained */
+  PetscInt    *owner;     /* per vertex and component: index of the BC that constrains it, -1 */
+  PetscBool   *mark;
+  PetscInt     conflict = -1, conflict_g;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(pb->dm, &pStart, &pEnd));
+  PetscCall(PetscCalloc2(pb->nv, &cmask, pb->nv, &mark));
+  PetscCall(PetscMalloc1(3 * pb->nv, &owner));
+  for (PetscInt i = 0; i < 3 * pb->nv; i++) owner[i] = -1;
+  for (PetscInt b = 0; b < cs->nbc; b++) {
+    PetscBool found;
+    PetscCall(PetscArrayzero(mark, pb->nv));
+    PetscCall(MarkSetVertices(pb, cs->bc[b].set, mark, &found));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, pb->comm));
+    PetscCheck(found, pb->comm, PETSC_ERR_USER_INPUT, "-bc_%s_set: the mesh has no set named '%s'", cs->bc[b].name, cs->bc[b].set);
+    for (PetscInt v = 0; v < pb->nv; v++) {
+      if (!mark[v]) continue;
+      for (PetscInt k = 0; k < cs->bc[b].ncomp; k++) {
+        const PetscInt c = cs->bc[b].comp[k], o = owner[3 * v + c];
+        if (o >= 0 && conflict < 0) {
+          /* the same component prescribed twice: allowed only when the values agree */
+          PetscInt ko = 0;
+          while (ko < cs->bc[o].ncomp && cs->bc[o].comp[ko] != c) ko++;
+          if (cs->bc[o].value[ko] != cs->bc[b].value[k]) conflict = b * ATRITO_MAX_BC + o;
+        }
+        owner[3 * v + c] = b;
+        cmask[v] |= 1 << c;
+      }
+    }
+  }
+  PetscCall(MPIU_Allreduce(&conflict, &conflict_g, 1, MPIU_INT, MPI_MAX, pb->comm));
+  PetscCheck(conflict_g < 0, pb->comm, PETSC_ERR_USER_INPUT, "boundary conditions '%s' and '%s' prescribe different values to the same displacement component", cs->bc[conflict_g / ATRITO_MAX_BC].name, cs->bc[conflict_g % ATRITO_MAX_BC].name);
+
+  PetscCall(PetscSectionCreate(pb->comm, &s));
+  PetscCall(PetscSectionSetNumFields(s, 1));
+  PetscCall(PetscSectionSetFieldName(s, 0, "displacement"));
+  PetscCall(PetscSectionSetFieldComponents(s, 0, 3));
+  PetscCall(PetscSectionSetChart(s, pStart, pEnd));
+  for (PetscInt v = 0; v < pb->nv; v++) {
+    PetscInt nc = 0;
+    for (PetscInt c = 0; c < 3; c++) nc += (cmask[v] >> c) & 1;
+    PetscCall(PetscSectionSetDof(s, pb->vstart + v, 3));
+    PetscCall(PetscSectionSetFieldDof(s, pb->vstart + v, 0, 3));
+    if (nc) {
+      PetscCall(PetscSectionSetConstraintDof(s, pb->vstart + v, nc));
+      PetscCall(PetscSectionSetFieldConstraintDof(s, pb->vstart + v, 0, nc));
+    }
+  }
+  PetscCall(PetscSectionSetUp(s));
+  for (PetscInt v = 0; v < pb->nv; v++) {
+    PetscInt idx[3], nc = 0;
+    for (PetscInt c = 0; c < 3; c++)
+      if ((cmask[v] >> c) & 1) idx[nc++] = c;
+    if (nc) {
+      PetscCall(PetscSectionSetConstraintIndices(s, pb->vstart + v, idx));
+      PetscCall(PetscSectionSetFieldConstraintIndices(s, pb->vstart + v, 0, idx));
+    }
+  }
+  PetscCall(DMSetLocalSection(pb->dm, s));
+  PetscCall(DMSetBasicAdjacency(pb->dm, PETSC_FALSE, PETSC_TRUE));
+
+  /* the unconstrained twin, for reactions */
+  PetscCall(DMClone(pb->dm, &pb->dmr));
+  PetscCall(PetscSectionCreate(pb->comm, &sr));
+  PetscCall(PetscSectionSetChart(sr, pStart, pEnd));
+  for (PetscInt v = 0; v < pb->nv; v++) PetscCall(PetscSectionSetDof(sr, pb->vstart + v, 3));
+  PetscCall(PetscSectionSetUp(sr));
+  PetscCall(DMSetLocalSection(pb->dmr, sr));
+
+  /* per-vertex local offsets; the two local layouts must agree */
+  PetscCall(PetscMalloc1(pb->nv, &pb->vloff));
+  for (PetscInt v = 0; v < pb->nv; v++) {
+    PetscInt off, offr;
+    PetscCall(PetscSectionGetOffset(s, pb->vstart + v, &off));
+    PetscCall(PetscSectionGetOffset(sr, pb->vstart + v, &offr));
+    PetscCheck(off == offr, PETSC_COMM_SELF, PETSC_ERR_PLIB, "local layouts differ at vertex %" PetscInt_FMT, v);
+    pb->vloff[v] = off;
+  }
+
+  /* BC dof lists and owned-vertex lists */
+  {
+    PetscSection gs;
+    PetscCall(DMGetGlobalSection(pb->dm, &gs));
+    PetscCall(PetscMalloc1(pb->nv, &pb->vowned));
+    for (PetscInt v = 0; v < pb->nv; v++) {
+      PetscInt goff;
+      PetscCall(PetscSectionGetOffset(gs, pb->vstart + v, &goff));
+      pb->vowned[v] = goff >= 0 ? PETSC_TRUE : PETSC_FALSE;
+    }
+    /* element dof map: global index of each local dof, -1 when constrained */
+    PetscCall(PetscMalloc1(24 * pb->nc, &pb->cgdof));
+    for (PetscInt e = 0; e < pb->nc; e++)
+      for (PetscInt a = 0; a < 8; a++) {
+        const PetscInt v = pb->cv[8 * e + a];
+        PetscInt       goff, skipped = 0;
+        PetscCall(PetscSectionGetOffset(gs, pb->vstart + v, &goff));
+        if (goff < 0) goff = -(goff + 1);
+        for (PetscInt c = 0; c < 3; c++) {
+          if ((cmask[v] >> c) & 1) {
+            pb->cgdof[24 * e + 3 * a + c] = -1;
+            skipped++;
+          } else pb->cgdof[24 * e + 3 * a + c] = goff + c - skipped;
+        }
+      }
+  }
+  pb->nbc = cs->nbc;
+  for (PetscInt b = 0; b < cs->nbc; b++) {
+    BCData   *bd = &pb->bc[b];
+    PetscBool found;
+    PetscCall(PetscArrayzero(mark, pb->nv));
+    PetscCall(MarkSetVertices(pb, cs->bc[b].set, mark, &found));
+    bd->nset = bd->nown = 0;
+    for (PetscInt v = 0; v < pb->nv; v++)
+      if (mark[v]) {
+        for (PetscInt k = 0; k < cs->bc[b].ncomp; k++)
+          if (owner[3 * v + cs->bc[b].comp[k]] == b) bd->nset++;
+        if (pb->vowned[v]) bd->nown++;
+      }
+    PetscCall(PetscMalloc3(bd->nset, &bd->loff, bd->nset, &bd->val, bd->nown, &bd->own));
+    bd->nset = bd->nown = 0;
+    for (PetscInt v = 0; v < pb->nv; v++)
+      if (mark[v]) {
+        for (PetscInt k = 0; k < cs->bc[b].ncomp; k++)
+          if (owner[3 * v + cs->bc[b].comp[k]] == b) {
+            bd->loff[bd->nset] = pb->vloff[v] + cs->bc[b].comp[k];
+            bd->val[bd->nset++] = cs->bc[b].value[k];
+          }
+        if (pb->vowned[v]) bd->own[bd->nown++] = v;
+      }
+  }
+  PetscCall(PetscSectionDestroy(&s));
+  PetscCall(PetscSectionDestroy(&sr));
+  PetscCall(PetscFree2(cmask, mark));
+  PetscCall(PetscFree(owner));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemCreateMesh(Problem *pb)
+{
+  const Case    *cs = pb->cs;
+  MeshData       md;
+  PetscErrorCode ierr = 0;
+  DM             dm, dmd = NULL;
+  PetscSF        sfmig = NULL;
+  PetscInt       nnames = 0;
+  char         (*names)[ATRITO_NAME_LEN] = NULL;
+  PetscInt      *is_cell = NULL;
+  PetscInt       dims[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&md, sizeof(md)));
+  /* rank 0 reads or generates; a failure there is reported on every rank */
+  if (pb->rank == 0) {
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = MeshDataLoad(cs, &md);
+    PetscCall(PetscPopErrorHandler());
+  }
+  PetscCall(AtritoRootError(pb->comm, ierr));
+  if (pb->rank == 0) {
+    dims[0] = md.nv;
+    dims[1] = md.ne;
+  }
+  PetscCallMPI(MPI_Bcast(dims, 2, MPIU_INT, 0, pb->comm));
+  pb->nv_global = dims[0];
+  pb->ne_global = dims[1];
+
+  {
+    PetscInt *cells = NULL;
+    if (pb->rank == 0) {
+      PetscCall(PetscMalloc1(8 * md.ne, &cells));
+      for (PetscInt e = 0; e < md.ne; e++)
+        for (PetscInt i = 0; i < 8; i++) cells[8 * e + i] = md.conn[8 * e + hex_plex_to_std[i]];
+    }
+    PetscCall(DMPlexCreateFromCellListPetsc(pb->comm, 3, pb->rank ? 0 : md.ne, pb->rank ? 0 : md.nv, 8, PETSC_FALSE, cells, 3, pb->rank ? NULL : md.X, &dm));
+    PetscCall(PetscFree(cells));
+  }
+  PetscCall(PetscObjectSetName((PetscObject)dm, "mesh"));
+
+  /* set names, broadcast so that every rank creates every label */
+  if (pb->rank == 0) {
+    nnames = md.nnset + md.nelset;
+    PetscCall(PetscCalloc2(nnames, &names, nnames, &is_cell));
+    for (PetscInt i = 0; i < md.nnset; i++) PetscCall(PetscStrncpy(names[i], md.nsets[i].name, ATRITO_NAME_LEN));
+    for (PetscInt i = 0; i < md.nelset; i++) {
+      PetscBool clash = PETSC_FALSE;
+      for (PetscInt j = 0; j < md.nnset; j++) {
+        PetscBool eq;
+        PetscCall(PetscStrcmp(md.nsets[j].name, md.elsets[i].name, &eq));
+        clash = clash || eq;
+      }
+      if (clash) PetscCall(PetscSNPrintf(names[md.nnset + i], ATRITO_NAME_LEN, "%s_elements", md.elsets[i].name));
+      else PetscCall(PetscStrncpy(names[md.nnset + i], md.elsets[i].name, ATRITO_NAME_LEN));
+      is_cell[md.nnset + i] = 1;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&nnames, 1, MPIU_INT, 0, pb->comm));
+  if (pb->rank) PetscCall(PetscCalloc2(nnames, &names, nnames, &is_cell));
+  PetscCallMPI(MPI_Bcast(names, (PetscMPIInt)(nnames * ATRITO_NAME_LEN), MPI_CHAR, 0, pb->comm));
+  {
+    PetscInt vStart, vEnd;
+    PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+    for (PetscInt i = 0; i < nnames; i++) {
+      PetscCall(DMCreateLabel(dm, names[i]));
+      if (pb->rank) continue;
+      if (!is_cell[i])
+        for (PetscInt k = 0; k < md.nsets[i].n; k++) PetscCall(DMSetLabelValue(dm, names[i], vStart + md.nsets[i].idx[k], 1));
+      else
+        for (PetscInt k = 0; k < md.elsets[i - md.nnset].n; k++) PetscCall(DMSetLabelValue(dm, names[i], md.elsets[i - md.nnset].idx[k], 1));
+    }
+  }
+
+  /* source ids as a field on the serial mesh, carried through distribution */
+  PetscSection idsec;
+  Vec          idvec;
+  {
+    PetscInt     pStart, pEnd, vStart, vEnd, n;
+    PetscScalar *a;
+    PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+    PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+    PetscCall(PetscSectionCreate(PETSC_COMM_SELF, &idsec));
+    PetscCall(PetscSectionSetChart(idsec, pStart, pEnd));
+    for (PetscInt p = pStart; p < pEnd; p++) PetscCall(PetscSectionSetDof(idsec, p, 1));
+    PetscCall(PetscSectionSetUp(idsec));
+    PetscCall(PetscSectionGetStorageSize(idsec, &n));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &idvec));
+    PetscCall(VecGetArray(idvec, &a));
+    for (PetscInt p = pStart; p < pEnd; p++) {
+      PetscInt off;
+      PetscCall(PetscSectionGetOffset(idsec, p, &off));
+      a[off] = (p >= vStart && p < vEnd) ? (PetscScalar)md.node_id[p - vStart] : (PetscScalar)md.elem_id[p];
+    }
+    PetscCall(VecRestoreArray(idvec, &a));
+  }
+
+  /* partition and distribute */
+  if (pb->size > 1) {
+    PetscPartitioner part;
+    PetscCall(DMPlexGetPartitioner(dm, &part));
+    if (cs->partition_metis) {
+      PetscInt *sizes, *points = NULL;
+      PetscCall(PetscCalloc1(pb->size, &sizes));
+      if (pb->rank == 0) {
+        PetscCall(PetscMalloc1(md.ne, &points));
+        PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+        ierr = PartitionMetis(&md, pb->size, sizes, points);
+        PetscCall(PetscPopErrorHandler());
+      }
+      PetscCall(AtritoRootError(pb->comm, ierr));
+      PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSHELL));
+      PetscCall(PetscPartitionerShellSetPartition(part, pb->size, sizes, points));
+      PetscCall(PetscFree(sizes));
+      PetscCall(PetscFree(points));
+    } else PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSIMPLE));
+    PetscCall(DMPlexDistribute(dm, 0, &sfmig, &dmd));
+  }
+  if (dmd) {
+    PetscSection nsec;
+    Vec          nvec;
+    PetscCall(PetscSectionCreate(PETSC_COMM_SELF, &nsec));
+    PetscCall(VecCreate(PETSC_COMM_SELF, &nvec));
+    PetscCall(DMPlexDistributeField(dm, sfmig, idsec, idvec, nsec, nvec));
+    PetscCall(PetscSectionDestroy(&idsec));
+    PetscCall(VecDestroy(&idvec));
+    idsec = nsec;
+    idvec = nvec;
+    PetscCall(PetscSFDestroy(&sfmig));
+    PetscCall(DMDestroy(&dm));
+    dm = dmd;
+  }
+  pb->dm = dm;
+  PetscCall(MeshDataDestroy(&md));
+  PetscCall(PetscFree2(names, is_cell));
+
+  /* per-rank arrays */
+  {
+    PetscInt           cStart, cEnd, vStart, vEnd;
+    Vec                coords;
+    const PetscScalar *xa, *ida;
+    PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+    PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+    pb->nc     = cEnd - cStart;
+    pb->nv     = vEnd - vStart;
+    pb->vstart = vStart;
+    PetscCall(PetscMalloc5(8 * pb->nc, &pb->cv, 3 * pb->nv, &pb->X, pb->nv, &pb->node_id, pb->nc, &pb->elem_id, pb->nc, &pb->einfo));
+    PetscCall(PetscMemzero(pb->einfo, pb->nc * sizeof(ElementInfo)));
+    for (PetscInt c = cStart; c < cEnd; c++) {
+      const PetscInt *cone;
+      PetscInt        csize;
+      PetscCall(DMPlexGetConeSize(dm, c, &csize));
+      PetscCheck(csize == 8, PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices", c, csize);
+      PetscCall(DMPlexGetCone(dm, c, &cone));
+      for (PetscInt i = 0; i < 8; i++) pb->cv[8 * (c - cStart) + i] = cone[hex_plex_to_std[i]] - vStart;
+    }
+    PetscCall(DMGetCoordinatesLocal(dm, &coords));
+    PetscCall(VecGetArrayRead(coords, &xa));
+    for (PetscInt i = 0; i < 3 * pb->nv; i++) pb->X[i] = PetscRealPart(xa[i]);
+    PetscCall(VecRestoreArrayRead(coords, &xa));
+    PetscCall(VecGetArrayRead(idvec, &ida));
+    for (PetscInt p = cStart; p < vEnd; p++) {
+      PetscInt off;
+      PetscCall(PetscSectionGetOffset(idsec, p, &off));
+      if (p < cEnd) pb->elem_id[p - cStart] = (PetscInt)PetscRealPart(ida[off]);
+      else if (p >= vStart) pb->node_id[p - vStart] = (PetscInt)PetscRealPart(ida[off]);
+    }
+    PetscCall(VecRestoreArrayRead(idvec, &ida));
+    PetscCall(PetscSectionDestroy(&idsec));
+    PetscCall(VecDestroy(&idvec));
+  }
+  PetscCall(CreateSections(pb));
+
+  /* report the partition */
+  {
+    PetscInt *counts = NULL;
+    if (pb->rank == 0) PetscCall(PetscMalloc1(pb->size, &counts));
+    PetscCallMPI(MPI_Gather(&pb->nc, 1, MPIU_INT, counts, 1, MPIU_INT, 0, pb->comm));
+    PetscCall(PetscPrintf(pb->comm, "mesh: %" PetscInt_FMT " vertices, %" PetscInt_FMT " hexahedra; partition %s; cells per rank:", pb->nv_global, pb->ne_global, pb->size == 1 ? "none" : (cs->partition_metis ? "metis" : "simple")));
+    if (pb->rank == 0)
+      for (PetscMPIInt r = 0; r < pb->size; r++) PetscCall(PetscPrintf(PETSC_COMM_SELF, " %" PetscInt_FMT, counts[r]));
+    PetscCall(PetscPrintf(pb->comm, "\n"));
+    PetscCall(PetscFree(counts));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemDestroyMesh(Problem *pb)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt b = 0; b < pb->nbc; b++) PetscCall(PetscFree3(pb->bc[b].loff, pb->bc[b].val, pb->bc[b].own));
+  PetscCall(PetscFree5(pb->cv, pb->X, pb->node_id, pb->elem_id, pb->einfo));
+  PetscCall(PetscFree(pb->vloff));
+  PetscCall(PetscFree(pb->vowned));
+  PetscCall(PetscFree(pb->cgdof));
+  PetscCall(DMDestroy(&pb->dmr));
+  PetscCall(DMDestroy(&pb->dm));
+  PetscFunctionReturn(0);
+}

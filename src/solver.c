@@ -1,0 +1,432 @@
+/* Solver module: assembly of the residual and the exact Jacobian over the local cells,
+   SNES, load stepping with cut-back and growth, commit and rollback of the history.
+
+   State lifecycle: hist_c (committed) changes only in CommitStep(); every residual or Jacobian
+   evaluation recomputes hist_t (trial) from hist_c and the current iterate. */
+#include <math.h>
+#include <string.h>
+#include "atrito.h"
+#include "tensor.h"
+#include "output.h"
+
+static void BoundaryValues(const Problem *pb, PetscScalar *u, PetscReal lambda)
+{
+  for (PetscInt b = 0; b < pb->nbc; b++)
+    for (PetscInt k = 0; k < pb->bc[b].nset; k++) u[pb->bc[b].loff[k]] = lambda * pb->bc[b].val[k];
+}
+
+/* Element loop: local residual into Floc (if F), Jacobian into J (if J); per-cell info if asked.
+   Failures are counted, and reported collectively. */
+static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool residual, Mat J, PetscBool want_info)
+{
+  const PetscScalar *u;
+  PetscScalar       *f = NULL;
+  PetscInt           nfail = 0, badid = PETSC_MAX_INT, badst = 0;
+  double             ke[24 * 24];
+  PetscInt           gfail[2];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGlobalToLocal(pb->dm, U, INSERT_VALUES, pb->Uloc));
+  PetscCall(VecGetArray(pb->Uloc, (PetscScalar **)&u));
+  BoundaryValues(pb, (PetscScalar *)u, lambda);
+  if (residual) {
+    PetscCall(VecZeroEntries(pb->Floc));
+    PetscCall(VecGetArray(pb->Floc, &f));
+  }
+  if (J) PetscCall(MatZeroEntries(J));
+  for (PetscInt e = 0; e < pb->nc; e++) {
+    double         X[8][3], ue[8][3], fe[24];
+    const PetscInt *cv = pb->cv + 8 * e;
+    for (int a = 0; a < 8; a++) {
+      const PetscInt o = pb->vloff[cv[a]];
+      for (int i = 0; i < 3; i++) {
+        X[a][i]  = pb->X[3 * cv[a] + i];
+        ue[a][i] = PetscRealPart(u[o + i]);
+      }
+    }
+    const PetscReal(*hn)[MAT_NHIST] = (const PetscReal(*)[MAT_NHIST])(pb->hist_c + (size_t)e * HEX8_NQP * MAT_NHIST);
+    PetscReal(*ht)[MAT_NHIST]       = (PetscReal(*)[MAT_NHIST])(pb->hist_t + (size_t)e * HEX8_NQP * MAT_NHIST);
+    const int st = hex8_element(&pb->cs->mat, &pb->cs->elem, X, ue, hn, fe, J ? ke : NULL, ht, want_info ? &pb->einfo[e] : NULL);
+    if (st != MAT_OK) {
+      nfail++;
+      if (pb->elem_id[e] < badid) {
+        badid = pb->elem_id[e];
+        badst = st;
+      }
+      continue;
+    }
+    if (residual)
+      for (int a = 0; a < 8; a++) {
+        const PetscInt o = pb->vloff[cv[a]];
+        for (int i = 0; i < 3; i++) f[o + i] += fe[3 * a + i];
+      }
+    if (J) PetscCall(MatSetValues(J, 24, pb->cgdof + 24 * e, 24, pb->cgdof + 24 * e, ke, ADD_VALUES));
+  }
+  PetscCall(VecRestoreArray(pb->Uloc, (PetscScalar **)&u));
+  if (residual) PetscCall(VecRestoreArray(pb->Floc, &f));
+  if (J) {
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  /* collective failure report: count, and the smallest failing element id with its cause */
+  gfail[0] = nfail;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, gfail, 1, MPIU_INT, MPI_SUM, pb->comm));
+  pb->ndomain_err = gfail[0];
+  if (gfail[0]) {
+    PetscInt pair[2] = {badid, badst}, gmin;
+    PetscCall(MPIU_Allreduce(&pair[0], &gmin, 1, MPIU_INT, MPI_MIN, pb->comm));
+    if (gmin != badid) pair[1] = 0;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pair[1], 1, MPIU_INT, MPI_MAX, pb->comm));
+    pb->bad_cell_id = gmin;
+    pb->bad_status  = pair[1];
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemResidualLocal(Problem *pb, Vec U, PetscReal lambda)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Assemble(pb, U, lambda, PETSC_TRUE, NULL, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormFunction(SNES snes, Vec U, Vec F, void *ctx)
+{
+  Problem *pb = (Problem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(pb->ev_residual, 0, 0, 0, 0));
+  PetscCall(Assemble(pb, U, pb->lambda, PETSC_TRUE, NULL, PETSC_FALSE));
+  PetscCall(VecZeroEntries(F));
+  if (pb->ndomain_err) PetscCall(SNESSetFunctionDomainError(snes));
+  else PetscCall(DMLocalToGlobal(pb->dm, pb->Floc, ADD_VALUES, F));
+  PetscCall(PetscLogEventEnd(pb->ev_residual, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx)
+{
+  Problem *pb = (Problem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(pb->ev_jacobian, 0, 0, 0, 0));
+  PetscCall(Assemble(pb, U, pb->lambda, PETSC_FALSE, P, PETSC_FALSE));
+  if (pb->ndomain_err) PetscCall(SNESSetJacobianDomainError(snes));
+  if (J != P) {
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(PetscLogEventEnd(pb->ev_jacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Reactions: the assembled internal force at the vertices of each BC set, summed over the
+   owned vertices (every vertex counted once), on all ranks. */
+PetscErrorCode ProblemReactions(Problem *pb, PetscReal (*R)[3])
+{
+  Vec                Rg;
+  const PetscScalar *r;
+  PetscSection       gs;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(pb->dmr, &Rg));
+  PetscCall(VecZeroEntries(Rg));
+  PetscCall(DMLocalToGlobal(pb->dmr, pb->Floc, ADD_VALUES, Rg));
+  PetscCall(DMGetGlobalSection(pb->dmr, &gs));
+  PetscCall(VecGetOwnershipRange(Rg, &rstart, NULL));
+  PetscCall(VecGetArrayRead(Rg, &r));
+  for (PetscInt b = 0; b < pb->nbc; b++) {
+    R[b][0] = R[b][1] = R[b][2] = 0;
+    for (PetscInt k = 0; k < pb->bc[b].nown; k++) {
+      PetscInt goff;
+      PetscCall(PetscSectionGetOffset(gs, pb->vstart + pb->bc[b].own[k], &goff));
+      for (int i = 0; i < 3; i++) R[b][i] += PetscRealPart(r[goff - rstart + i]);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(Rg, &r));
+  PetscCall(DMRestoreGlobalVector(pb->dmr, &Rg));
+  if (pb->nbc) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &R[0][0], 3 * pb->nbc, MPIU_REAL, MPIU_SUM, pb->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode HistoryOpen(Problem *pb, FILE **fp)
+{
+  char path[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBeginUser;
+  *fp = NULL;
+  if (pb->rank) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/history.csv", pb->cs->output_dir));
+  *fp = fopen(path, "w");
+  PetscCheck(*fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write '%s' (-output_dir)", path);
+  fprintf(*fp, "step,time,newton_its,residual_initial,residual_final");
+  for (PetscInt b = 0; b < pb->nbc; b++) fprintf(*fp, ",%s_fx,%s_fy,%s_fz", pb->cs->bc[b].name, pb->cs->bc[b].name, pb->cs->bc[b].name);
+  fprintf(*fp, "\n");
+  fflush(*fp);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode HistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscReal time, PetscInt its, PetscReal r0, PetscReal r)
+{
+  PetscReal R[ATRITO_MAX_BC][3];
+  char      line[64 * (3 * ATRITO_MAX_BC + 8)];
+  size_t    len = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(ProblemReactions(pb, R));
+  if (pb->rank) PetscFunctionReturn(0);
+  /* format the whole row first, then write it at once: a killed run leaves whole rows */
+  len += snprintf(line + len, sizeof(line) - len, "%" PetscInt_FMT ",%.12g,%" PetscInt_FMT ",%.6e,%.6e", step, (double)time, its, (double)r0, (double)r);
+  for (PetscInt b = 0; b < pb->nbc; b++) len += snprintf(line + len, sizeof(line) - len, ",%.12e,%.12e,%.12e", (double)R[b][0], (double)R[b][1], (double)R[b][2]);
+  len += snprintf(line + len, sizeof(line) - len, "\n");
+  fwrite(line, 1, len, fp);
+  fflush(fp);
+  PetscFunctionReturn(0);
+}
+
+/* Output ordering: owned vertices and cells by their global numbers */
+typedef struct {
+  PetscInt  nvo, voff, *vloc;  /* owned vertices: count, first global number, local index of each row */
+  PetscInt  eoff;              /* first global cell number                                          */
+  PetscInt *gnum;              /* global number of every local vertex                               */
+} OutputMap;
+
+static PetscErrorCode OutputMapCreate(Problem *pb, OutputMap *om)
+{
+  IS              vis, cis;
+  const PetscInt *vn, *cn;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetVertexNumbering(pb->dm, &vis));
+  PetscCall(DMPlexGetCellNumbering(pb->dm, &cis));
+  PetscCall(ISGetIndices(vis, &vn));
+  PetscCall(ISGetIndices(cis, &cn));
+  PetscCall(PetscMalloc2(pb->nv, &om->vloc, pb->nv, &om->gnum));
+  om->nvo  = 0;
+  om->voff = PETSC_MAX_INT;
+  for (PetscInt v = 0; v < pb->nv; v++) {
+    om->gnum[v] = vn[v] >= 0 ? vn[v] : -(vn[v] + 1);
+    if (vn[v] >= 0) {
+      om->nvo++;
+      om->voff = PetscMin(om->voff, vn[v]);
+    }
+  }
+  if (!om->nvo) om->voff = 0;
+  for (PetscInt v = 0; v < pb->nv; v++)
+    if (vn[v] >= 0) om->vloc[vn[v] - om->voff] = v;
+  om->eoff = pb->nc ? cn[0] : 0;
+  for (PetscInt c = 0; c < pb->nc; c++) PetscCheck(cn[c] == om->eoff + c, PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell numbering is not contiguous");
+  PetscCall(ISRestoreIndices(vis, &vn));
+  PetscCall(ISRestoreIndices(cis, &cn));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteMesh(Problem *pb, OutputFields of, OutputMap *om)
+{
+  PetscReal *X;
+  PetscInt  *nid, *conn;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc3(3 * om->nvo, &X, om->nvo, &nid, 8 * pb->nc, &conn));
+  for (PetscInt r = 0; r < om->nvo; r++) {
+    for (int i = 0; i < 3; i++) X[3 * r + i] = pb->X[3 * om->vloc[r] + i];
+    nid[r] = pb->node_id[om->vloc[r]];
+  }
+  for (PetscInt k = 0; k < 8 * pb->nc; k++) conn[k] = om->gnum[pb->cv[k]];
+  PetscCall(OutputFieldsWriteMesh(of, om->nvo, om->voff, pb->nv_global, X, nid, pb->nc, om->eoff, pb->ne_global, conn, pb->elem_id));
+  PetscCall(PetscFree3(X, nid, conn));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteFields(Problem *pb, OutputFields of, OutputMap *om, PetscInt step, PetscReal time)
+{
+  PetscReal         *disp, *ep, *mises, *thick;
+  const PetscScalar *u;
+  OutputField        nf[1], cf[3];
+  PetscInt           ncf = 2;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc4(3 * om->nvo, &disp, pb->nc, &ep, pb->nc, &mises, pb->nc, &thick));
+  /* Uloc holds the converged displacements with the boundary values (set by the last assembly) */
+  PetscCall(VecGetArrayRead(pb->Uloc, &u));
+  for (PetscInt r = 0; r < om->nvo; r++)
+    for (int i = 0; i < 3; i++) disp[3 * r + i] = PetscRealPart(u[pb->vloff[om->vloc[r]] + i]);
+  PetscCall(VecRestoreArrayRead(pb->Uloc, &u));
+  for (PetscInt c = 0; c < pb->nc; c++) {
+    ep[c]    = pb->einfo[c].ep;
+    mises[c] = pb->einfo[c].mises;
+    if (pb->cs->thickness_output) {
+      /* thickness strain ln(h/h0) = -ln |F^-T N| at the centroid, N the reference normal */
+      double Fi[9], v[3];
+      const double *N = pb->cs->thickness_dir;
+      t3_inv(pb->einfo[c].F0, Fi);
+      for (int i = 0; i < 3; i++) v[i] = Fi[i] * N[0] + Fi[3 + i] * N[1] + Fi[6 + i] * N[2];
+      thick[c] = -log(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    }
+  }
+  nf[0].name  = "displacement";
+  nf[0].ncomp = 3;
+  nf[0].data  = disp;
+  cf[0].name  = "plastic_strain";
+  cf[0].ncomp = 1;
+  cf[0].data  = ep;
+  cf[1].name  = "von_mises";
+  cf[1].ncomp = 1;
+  cf[1].data  = mises;
+  if (pb->cs->thickness_output) {
+    cf[2].name  = "thickness_strain";
+    cf[2].ncomp = 1;
+    cf[2].data  = thick;
+    ncf         = 3;
+  }
+  PetscCall(OutputFieldsWriteStep(of, step, time, 1, nf, ncf, cf));
+  PetscCall(PetscFree4(disp, ep, mises, thick));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemSetUp(Problem *pb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventRegister("AtritoResidual", DM_CLASSID, &pb->ev_residual));
+  PetscCall(PetscLogEventRegister("AtritoJacobian", DM_CLASSID, &pb->ev_jacobian));
+  PetscCall(PetscMalloc2((size_t)pb->nc * HEX8_NQP * MAT_NHIST, &pb->hist_c, (size_t)pb->nc * HEX8_NQP * MAT_NHIST, &pb->hist_t));
+  for (PetscInt q = 0; q < pb->nc * HEX8_NQP; q++) {
+    MaterialHistoryInit(pb->hist_c + (size_t)q * MAT_NHIST);
+    MaterialHistoryInit(pb->hist_t + (size_t)q * MAT_NHIST);
+  }
+  PetscCall(DMCreateGlobalVector(pb->dm, &pb->U));
+  PetscCall(VecDuplicate(pb->U, &pb->Uc));
+  PetscCall(VecDuplicate(pb->U, &pb->Uprev));
+  PetscCall(DMCreateLocalVector(pb->dm, &pb->Uloc));
+  PetscCall(VecDuplicate(pb->Uloc, &pb->Floc));
+  PetscFunctionReturn(0);
+}
+
+static const char *FailureCause(Problem *pb, SNESConvergedReason reason, char *buf, size_t len)
+{
+  if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN) {
+    if (pb->bad_status == MAT_ERR_RETURNMAP) snprintf(buf, len, "the local return map did not converge (element id %d)", (int)pb->bad_cell_id);
+    else snprintf(buf, len, "an element inverted (element id %d)", (int)pb->bad_cell_id);
+  } else if (reason == SNES_DIVERGED_FNORM_NAN) snprintf(buf, len, "NaN or Inf in the residual");
+  else if (reason == SNES_DIVERGED_MAX_IT) snprintf(buf, len, "Newton did not converge in the allowed iterations");
+  else snprintf(buf, len, "Newton diverged (%s)", SNESConvergedReasons[reason]);
+  return buf;
+}
+
+PetscErrorCode ProblemSolve(Problem *pb)
+{
+  const Case  *cs = pb->cs;
+  SNES         snes;
+  KSP          ksp;
+  PC           pc;
+  Mat          J;
+  Vec          R;
+  FILE        *hist = NULL;
+  OutputFields of   = NULL;
+  OutputMap    om;
+  PetscReal    lam_c = 0, dl = cs->load_dt0, dl_prev = 0, rhist[256];
+  PetscInt     itshist[256], step = 0, total_its = 0, total_cuts = 0;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(OutputEnsureDirectory(pb->comm, cs->output_dir));
+  PetscCall(HistoryOpen(pb, &hist));
+  PetscCall(OutputMapCreate(pb, &om));
+  if (cs->output_interval > 0) {
+    PetscCall(OutputFieldsCreate(pb->comm, cs->output_dir, &of));
+    PetscCall(WriteMesh(pb, of, &om));
+  }
+
+  PetscCall(DMCreateMatrix(pb->dm, &J));
+  PetscCall(MatSetOption(J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(VecDuplicate(pb->U, &R));
+  PetscCall(SNESCreate(pb->comm, &snes));
+  PetscCall(SNESSetFunction(snes, R, FormFunction, pb));
+  PetscCall(SNESSetJacobian(snes, J, J, FormJacobian, pb));
+  PetscCall(SNESSetTolerances(snes, 1e-10, 1e-9, 1e-12, 25, -1));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  if (pb->size > 1) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(SNESSetConvergenceHistory(snes, rhist, itshist, 256, PETSC_TRUE));
+  PetscCall(SNESSetFromOptions(snes));
+
+  /* the initial state */
+  PetscCall(VecZeroEntries(pb->U));
+  PetscCall(VecZeroEntries(pb->Uc));
+  PetscCall(VecZeroEntries(pb->Uprev));
+  PetscCall(ProblemResidualLocal(pb, pb->U, 0.0));
+  if (of) PetscCall(WriteFields(pb, of, &om, 0, 0.0));
+
+  while (lam_c < 1.0 - 1e-12) {
+    SNESConvergedReason reason;
+    PetscInt            its = 0, cuts = 0, nres;
+    PetscReal           lam_t;
+
+    PetscCheck(step < cs->load_max_steps, pb->comm, PETSC_ERR_NOT_CONVERGED, "-load_max_steps %" PetscInt_FMT " reached at load %g", cs->load_max_steps, (double)lam_c);
+    for (;;) {
+      dl = PetscMin(dl, 1.0 - lam_c);
+      lam_t      = lam_c + dl;
+      pb->lambda = lam_t;
+      PetscCall(VecCopy(pb->Uc, pb->U));
+      if (cs->load_extrapolate && dl_prev > 0) PetscCall(VecAXPBYPCZ(pb->U, -dl / dl_prev, dl / dl_prev, 1.0, pb->Uprev, pb->Uc));
+      PetscCall(SNESSolve(snes, NULL, pb->U));
+      PetscCall(SNESGetConvergedReason(snes, &reason));
+      PetscCall(SNESGetIterationNumber(snes, &its));
+      if (reason > 0) break;
+      {
+        char buf[256];
+        FailureCause(pb, reason, buf, sizeof(buf));
+        cuts++;
+        total_cuts++;
+        PetscCheck(cuts <= cs->load_max_cuts && dl * cs->load_cut >= cs->load_dt_min, pb->comm, PETSC_ERR_NOT_CONVERGED,
+                   "step %" PetscInt_FMT " failed at load %.6g (increment %.3g) after %" PetscInt_FMT " cuts: %s; the results up to load %.6g are complete in %s",
+                   step + 1, (double)lam_t, (double)dl, cuts - 1, buf, (double)lam_c, cs->output_dir);
+        PetscCall(PetscPrintf(pb->comm, "step %" PetscInt_FMT " at load %.6g: %s; retrying with increment %.3g\n", step + 1, (double)lam_t, buf, (double)(dl * cs->load_cut)));
+        dl *= cs->load_cut;
+      }
+    }
+    /* converged: evaluate once more at the solution (trial history, cell info, reactions) and commit */
+    PetscCall(ProblemResidualLocal(pb, pb->U, lam_t));
+    PetscCheck(!pb->ndomain_err, pb->comm, PETSC_ERR_PLIB, "element evaluation failed at a converged state");
+    PetscCall(PetscArraycpy(pb->hist_c, pb->hist_t, (size_t)pb->nc * HEX8_NQP * MAT_NHIST));
+    PetscCall(VecCopy(pb->Uc, pb->Uprev));
+    PetscCall(VecCopy(pb->U, pb->Uc));
+    dl_prev = dl;
+    lam_c   = lam_t;
+    step++;
+    total_its += its;
+    PetscCall(SNESGetConvergenceHistory(snes, NULL, NULL, &nres));
+    PetscCall(HistoryWrite(pb, hist, step, lam_c, its, rhist[0], rhist[PetscMax(nres - 1, 0)]));
+    PetscCall(PetscTime(&t1));
+    PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0));
+    if (of && (step % cs->output_interval == 0 || lam_c >= 1.0 - 1e-12)) PetscCall(WriteFields(pb, of, &om, step, lam_c));
+    if (its <= cs->load_grow_its) dl = PetscMin(dl * cs->load_grow, cs->load_dt_max);
+  }
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscPrintf(pb->comm, "done: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " cuts, %.2f s\n", step, total_its, total_cuts, t1 - t0));
+
+  if (hist) fclose(hist);
+  PetscCall(OutputFieldsDestroy(&of));
+  PetscCall(PetscFree2(om.vloc, om.gnum));
+  PetscCall(SNESDestroy(&snes));
+  PetscCall(MatDestroy(&J));
+  PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemDestroy(Problem *pb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&pb->U));
+  PetscCall(VecDestroy(&pb->Uc));
+  PetscCall(VecDestroy(&pb->Uprev));
+  PetscCall(VecDestroy(&pb->Uloc));
+  PetscCall(VecDestroy(&pb->Floc));
+  PetscCall(PetscFree2(pb->hist_c, pb->hist_t));
+  PetscCall(ProblemDestroyMesh(pb));
+  PetscFunctionReturn(0);
+}

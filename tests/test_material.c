@@ -1,0 +1,488 @@
+/* Unit tests of the 3x3 tensor utilities and the finite-strain J2 material kernel. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "material.h"
+#include "tensor.h"
+#include "testutil.h"
+
+static const double PI = 3.14159265358979323846;
+
+/* ---------- small helpers ---------- */
+
+static double urand(unsigned long long *s) /* uniform in [-1, 1) (64-bit LCG) */
+{
+  *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+  return 2.0 * (double)(*s >> 11) / 9007199254740992.0 - 1.0;
+}
+
+static double fnorm(const double *A, int n)
+{
+  double s = 0.0;
+  for (int i = 0; i < n; i++) s += A[i] * A[i];
+  return sqrt(s);
+}
+
+static double fdiff(const double *A, const double *B, int n)
+{
+  double s = 0.0;
+  for (int i = 0; i < n; i++) s += (A[i] - B[i]) * (A[i] - B[i]);
+  return sqrt(s);
+}
+
+/* rotation by angle th about the axis a (Rodrigues) */
+static void rotation(const double a_[3], double th, double R[9])
+{
+  const double l = sqrt(a_[0] * a_[0] + a_[1] * a_[1] + a_[2] * a_[2]);
+  const double a[3] = {a_[0] / l, a_[1] / l, a_[2] / l}, c = cos(th), s = sin(th);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) R[3 * i + j] = (i == j ? c : 0.0) + (1.0 - c) * a[i] * a[j];
+  R[1] -= s * a[2];
+  R[2] += s * a[1];
+  R[3] += s * a[2];
+  R[5] -= s * a[0];
+  R[6] -= s * a[1];
+  R[7] += s * a[0];
+}
+
+static void random_rotation(unsigned long long *s, double R[9])
+{
+  const double a[3] = {urand(s), urand(s), urand(s) + 0.1};
+  rotation(a, 3.0 * urand(s), R);
+}
+
+/* R diag(d) R^T */
+static void rot_diag(const double R[9], const double d[3], double A[9])
+{
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) A[3 * i + j] = R[3 * i] * d[0] * R[3 * j] + R[3 * i + 1] * d[1] * R[3 * j + 1] + R[3 * i + 2] * d[2] * R[3 * j + 2];
+}
+
+/* eigen-decomposition errors: |A - Q diag Q^T| / |A| and |Q^T Q - I| */
+static void eig_errors(const double A[9], double *rec, double *orth)
+{
+  double lam[3], Q[9], B[9], QtQ[9];
+  const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  t3_sym_eig(A, lam, Q);
+  rot_diag(Q, lam, B);
+  t3_tmul(Q, Q, QtQ);
+  const double nA = fnorm(A, 9);
+  *rec  = fdiff(A, B, 9) / (nA > 0 ? nA : 1.0);
+  *orth = fdiff(QtQ, I, 9);
+}
+
+static void sort3(double v[3])
+{
+  for (int i = 0; i < 2; i++)
+    for (int j = 0; j < 2 - i; j++)
+      if (v[j] > v[j + 1]) {
+        const double t = v[j];
+        v[j]           = v[j + 1];
+        v[j + 1]       = t;
+      }
+}
+
+static double von_mises(const double tau[9])
+{
+  const double p = (tau[0] + tau[4] + tau[8]) / 3.0;
+  double       s[9];
+  for (int i = 0; i < 9; i++) s[i] = tau[i];
+  s[0] -= p;
+  s[4] -= p;
+  s[8] -= p;
+  return sqrt(1.5) * fnorm(s, 9);
+}
+
+static MaterialParams swift_params(void)
+{
+  MaterialParams mp;
+  memset(&mp, 0, sizeof mp);
+  mp.E = 69004.0;
+  mp.nu = 0.3;
+  mp.law = HARDENING_SWIFT;
+  mp.swK = 589.0;
+  mp.sweps0 = 1e-4;
+  mp.swn = 0.216;
+  MaterialParamsSetup(&mp);
+  return mp;
+}
+
+static MaterialParams linear_params(double sy0, double H)
+{
+  MaterialParams mp;
+  memset(&mp, 0, sizeof mp);
+  mp.E = 69004.0;
+  mp.nu = 0.3;
+  mp.law = HARDENING_LINEAR;
+  mp.sy0 = sy0;
+  mp.H = H;
+  MaterialParamsSetup(&mp);
+  return mp;
+}
+
+/* relative Frobenius error of the analytic tangent against central differences */
+static double tangent_fd_error(const MaterialParams *mp, const double F[9], const double hn[MAT_NHIST], int *plastic)
+{
+  double tau[9], dtau[81], fd[81], h[MAT_NHIST], tp[9], tm[9];
+  int    pl;
+  MaterialUpdate(mp, F, hn, tau, dtau, h, plastic);
+  const double step = 1e-7 * fnorm(F, 9) / sqrt(3.0);
+  for (int c = 0; c < 9; c++) {
+    double Fp[9], Fm[9];
+    memcpy(Fp, F, sizeof Fp);
+    memcpy(Fm, F, sizeof Fm);
+    Fp[c] += step;
+    Fm[c] -= step;
+    MaterialUpdate(mp, Fp, hn, tp, NULL, h, &pl);
+    MaterialUpdate(mp, Fm, hn, tm, NULL, h, &pl);
+    for (int r = 0; r < 9; r++) fd[9 * r + c] = (tp[r] - tm[r]) / (2.0 * step);
+  }
+  return fdiff(dtau, fd, 81) / fnorm(fd, 81);
+}
+
+/* closed-form uniaxial Kirchhoff stress: s = sigma_y(eps - s/E) (bisection) */
+static double uniaxial_exact(const MaterialParams *mp, double eps)
+{
+  double lo = 0.0, hi = MaterialYieldStress(mp, eps, NULL);
+  for (int it = 0; it < 200; it++) {
+    const double s = 0.5 * (lo + hi);
+    if (s - MaterialYieldStress(mp, eps - s / mp->E, NULL) > 0.0) hi = s;
+    else lo = s;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/* ---------- tests ---------- */
+
+static void test_eig(void)
+{
+  unsigned long long seed = 12345;
+  double             rmax = 0.0, omax = 0.0, rec, orth;
+  for (int t = 0; t < 10000; t++) {
+    double A[9];
+    for (int i = 0; i < 3; i++)
+      for (int j = i; j < 3; j++) A[3 * i + j] = A[3 * j + i] = urand(&seed) * pow(10.0, 3.0 * urand(&seed));
+    eig_errors(A, &rec, &orth);
+    rmax = fmax(rmax, rec);
+    omax = fmax(omax, orth);
+  }
+  TU_CHECK(rmax < 1e-13 && omax < 1e-13, "t3_sym_eig random symmetric (10000): max reconstruction %.2e, max |Q^T Q - I| %.2e", rmax, omax);
+
+  /* repeated eigenvalues: rotated diag(2,2,5), diag(3,3,3), diag(-1,4,4), near-repeated */
+  const double D[5][3] = {{2, 2, 5}, {3, 3, 3}, {-1, 4, 4}, {1, 1 + 1e-12, 4}, {0, 0, 1}};
+  double       lerr = 0.0;
+  rmax = omax = 0.0;
+  for (int c = 0; c < 5; c++)
+    for (int t = 0; t < 200; t++) {
+      double R[9], A[9], lam[3], Q[9], d[3] = {D[c][0], D[c][1], D[c][2]};
+      random_rotation(&seed, R);
+      rot_diag(R, d, A);
+      eig_errors(A, &rec, &orth);
+      rmax = fmax(rmax, rec);
+      omax = fmax(omax, orth);
+      t3_sym_eig(A, lam, Q);
+      sort3(lam);
+      sort3(d);
+      for (int a = 0; a < 3; a++) lerr = fmax(lerr, fabs(lam[a] - d[a]) / 5.0);
+    }
+  TU_CHECK(rmax < 1e-13 && omax < 1e-13 && lerr < 1e-14,
+           "t3_sym_eig repeated eigenvalues (rotated diag(2,2,5), (3,3,3), ...): reconstruction %.2e, orthogonality %.2e, eigenvalue error %.2e",
+           rmax, omax, lerr);
+
+  /* t3_inv / products */
+  double A[9], Ai[9], P[9], P2[9], At[9];
+  const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  for (int i = 0; i < 9; i++) A[i] = urand(&seed) + (i % 4 == 0 ? 2.0 : 0.0);
+  const double det = t3_inv(A, Ai);
+  t3_mul(A, Ai, P);
+  const double e1 = fdiff(P, I, 9);
+  t3_transpose(A, At);
+  t3_tmul(At, Ai, P);  /* A Ai */
+  t3_mult(Ai, At, P2); /* Ai A  */
+  const double e2 = fdiff(P, I, 9) + fdiff(P2, I, 9);
+  TU_CHECK(e1 < 1e-14 && e2 < 1e-14 && fabs(det - t3_det(A)) < 1e-14 * fabs(det),
+           "t3_inv/t3_mul/t3_tmul/t3_mult/t3_transpose: |A A^-1 - I| = %.2e, %.2e", e1, e2);
+}
+
+static void test_setup(void)
+{
+  MaterialParams mp = swift_params();
+  TU_CHECK(fabs(mp.K - 69004.0 / 1.2) < 1e-9 && fabs(mp.G - 69004.0 / 2.6) < 1e-9 && mp.rtol == 1e-12 && mp.maxit == 50,
+           "MaterialParamsSetup: K = %.6f, G = %.6f, rtol = %g, maxit = %d", mp.K, mp.G, mp.rtol, mp.maxit);
+  MaterialParams bad = mp;
+  int            r1, r2, r3;
+  bad.nu = 0.5;
+  r1 = MaterialParamsSetup(&bad);
+  bad.nu = -1.0;
+  r2 = MaterialParamsSetup(&bad);
+  bad.nu = 0.3;
+  bad.E = 0.0;
+  r3 = MaterialParamsSetup(&bad);
+  TU_CHECK(r1 && r2 && r3, "MaterialParamsSetup rejects nu = 0.5 (%d), nu = -1 (%d), E = 0 (%d)", r1, r2, r3);
+
+  /* yield stress and slope */
+  MaterialParams lin = linear_params(250.0, 1000.0);
+  double         d1, d2, e = 0.03, h = 1e-6;
+  const double   s1 = MaterialYieldStress(&mp, e, &d1);
+  const double   fd1 = (MaterialYieldStress(&mp, e + h, NULL) - MaterialYieldStress(&mp, e - h, NULL)) / (2 * h);
+  const double   s2 = MaterialYieldStress(&lin, e, &d2);
+  TU_CHECK(fabs(s1 - 589.0 * pow(1e-4 + e, 0.216)) < 1e-12 * s1 && fabs(d1 - fd1) < 1e-7 * d1 && s2 == 280.0 && d2 == 1000.0,
+           "MaterialYieldStress: Swift sy(0.03) = %.6f, slope %.6f (FD %.6f); linear sy = %g, slope %g", s1, d1, fd1, s2, d2);
+}
+
+static void test_elastic(void)
+{
+  MaterialParams     mp = swift_params();
+  unsigned long long seed = 777;
+  double             hn[MAT_NHIST], h[MAT_NHIST], tau[9], F[9], H[9];
+  int                pl, rc;
+  MaterialHistoryInit(hn);
+
+  /* small strain: tau ~ K tr(eps) I + 2G dev(eps), eps = sym(F - I) */
+  for (int i = 0; i < 9; i++) H[i] = urand(&seed);
+  for (int i = 0; i < 9; i++) F[i] = (i % 4 == 0 ? 1.0 : 0.0) + 1e-6 * H[i];
+  rc = MaterialUpdate(&mp, F, hn, tau, NULL, h, &pl);
+  double eps[9], lin[9];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) eps[3 * i + j] = 0.5e-6 * (H[3 * i + j] + H[3 * j + i]);
+  const double tr = eps[0] + eps[4] + eps[8];
+  for (int i = 0; i < 9; i++) lin[i] = 2.0 * mp.G * eps[i] + (i % 4 == 0 ? (mp.K - 2.0 * mp.G / 3.0) * tr : 0.0);
+  const double esmall = fdiff(tau, lin, 9) / fnorm(lin, 9);
+  TU_CHECK(rc == MAT_OK && !pl && esmall < 1e-5 && fdiff(h, hn, MAT_NHIST) == 0.0,
+           "elastic small strain F = I + 1e-6 H: |tau - tau_lin|/|tau_lin| = %.2e (O(1e-6) expected), history unchanged", esmall);
+
+  /* pure rotations of the undeformed state: zero stress */
+  const double z[3] = {0, 0, 1}, ob[3] = {1, -2, 0.7};
+  double       R[9], Rz[9], Rob[9];
+  rotation(z, 0.5 * PI, Rz);
+  rotation(ob, 0.5 * PI, Rob);
+  rc = MaterialUpdate(&mp, Rz, hn, tau, NULL, h, &pl);
+  const double t1 = fnorm(tau, 9) / mp.E;
+  int          rc2 = MaterialUpdate(&mp, Rob, hn, tau, NULL, h, &pl);
+  const double t2 = fnorm(tau, 9) / mp.E;
+  TU_CHECK(rc == MAT_OK && rc2 == MAT_OK && t1 < 1e-9 && t2 < 1e-9,
+           "pure rotation 90 deg (z, oblique axis) of the undeformed state: |tau|/E = %.2e, %.2e", t1, t2);
+
+  /* superposed 90-degree rotation of a pre-stretched state: tau(R F0) = R tau(F0) R^T, same history.
+     Elastic pre-stretch, and a plastic one with a committed history Cp^{-1} != I, ep > 0. */
+  const double F0[9] = {1.0008, 0.0003, -0.0002, 0.0001, 0.9996, 0.0004, -0.0003, 0.0002, 1.0002};
+  const double F1[9] = {1.08, 0.03, -0.02, 0.01, 0.96, 0.04, -0.03, 0.02, 1.01};
+  const double F2[9] = {1.12, 0.05, -0.01, 0.02, 0.93, 0.07, -0.05, 0.03, 1.04};
+  double       hc[MAT_NHIST];
+  MaterialUpdate(&mp, F1, hn, tau, NULL, hc, &pl); /* committed plastic history */
+  const double *Fs[2] = {F0, F2};
+  const double *Hs[2] = {hn, hc};
+  const char   *name[2] = {"elastic", "plastic, Cp^-1 != I"};
+  for (int c = 0; c < 2; c++) {
+    double tau0[9], h0[MAT_NHIST], maxe = 0.0, maxh = 0.0;
+    int    pl0;
+    MaterialUpdate(&mp, Fs[c], Hs[c], tau0, NULL, h0, &pl0);
+    for (int r = 0; r < 2; r++) {
+      double RF[9], Rt[9], T[9], h1[MAT_NHIST];
+      memcpy(R, r == 0 ? Rz : Rob, sizeof R);
+      t3_mul(R, Fs[c], RF);
+      MaterialUpdate(&mp, RF, Hs[c], tau, NULL, h1, &pl);
+      t3_mul(R, tau0, T);
+      t3_mult(T, R, Rt);
+      maxe = fmax(maxe, fdiff(tau, Rt, 9) / fnorm(tau0, 9));
+      maxh = fmax(maxh, fdiff(h1, h0, MAT_NHIST));
+      if (pl != pl0) maxe = 1.0;
+    }
+    TU_CHECK(maxe < 1e-10 && maxh < 1e-12 && pl0 == c,
+             "objectivity (%s, plastic=%d): 90 deg about z and oblique axis: |tau(RF) - R tau R^T|/|tau| = %.2e, |h(RF) - h(F)| = %.2e",
+             name[c], pl0, maxe, maxh);
+  }
+}
+
+static void test_uniaxial(void)
+{
+  MaterialParams mp = swift_params();
+  double         hn[MAT_NHIST], h[MAT_NHIST], tau[9], dtau[81];
+  const int      ninc = 200;
+  double         lat = 1.0, maxerr = 0.0, maxlat = 0.0, maxres = 0.0, maxsym = 0.0, sig_end = 0.0;
+  int            nplastic = 0, fail = 0, maxnewt = 0;
+  MaterialHistoryInit(hn);
+  for (int inc = 1; inc <= ninc; inc++) {
+    const double eps = 0.5 * inc / ninc, lam = exp(eps);
+    int          pl = 0, it;
+    /* Newton on the lateral stretch: tau_22(lat) = 0 */
+    for (it = 0; it < 30; it++) {
+      const double F[9] = {lam, 0, 0, 0, lat, 0, 0, 0, lat};
+      if (MaterialUpdate(&mp, F, hn, tau, dtau, h, &pl) != MAT_OK) { fail = 1; break; }
+      if (fabs(tau[4]) <= 1e-11 * fabs(tau[0])) break;
+      lat -= tau[4] / (dtau[4 * 9 + 4] + dtau[4 * 9 + 8]);
+    }
+    if (it > maxnewt) maxnewt = it;
+    if (fail) break;
+    maxres = fmax(maxres, fabs(tau[4]) / fabs(tau[0]));
+    maxsym = fmax(maxsym, fabs(tau[8] - tau[4]) / fabs(tau[0]) + (fabs(tau[1]) + fabs(tau[2]) + fabs(tau[5])) / fabs(tau[0]));
+    memcpy(hn, h, sizeof h);
+    if (!pl) continue;
+    nplastic++;
+    const double J = lam * lat * lat, sig = tau[0] / J;
+    const double s = uniaxial_exact(&mp, eps), Jex = exp((1.0 - 2.0 * mp.nu) * s / mp.E);
+    const double ep = eps - s / mp.E, latex = exp(-mp.nu * s / mp.E - 0.5 * ep);
+    maxerr = fmax(maxerr, fabs(sig - s / Jex) / (s / Jex));
+    maxlat = fmax(maxlat, fabs(lat - latex) / latex);
+    sig_end = sig;
+  }
+  TU_CHECK(!fail && nplastic == ninc && maxres < 1e-11,
+           "uniaxial Swift: %d/%d plastic increments, lateral Newton <= %d iterations, max |tau_22/tau_11| = %.2e",
+           nplastic, ninc, maxnewt, maxres);
+  TU_CHECK(!fail && maxerr < 5e-3 && maxerr < 1e-9,
+           "uniaxial Swift to 50%% log strain: max rel. error of sigma_11 vs closed form = %.2e (sigma_11 at end %.4f)",
+           maxerr, sig_end);
+  TU_CHECK(!fail && maxlat < 1e-9 && maxsym < 1e-12,
+           "uniaxial Swift: lateral stretch vs exp(-nu s/E - ep/2): max rel. error %.2e; tau_33 = tau_22, no shear: %.2e",
+           maxlat, maxsym);
+}
+
+static void test_tangent(void)
+{
+  MaterialParams     sw = swift_params(), lin = linear_params(200.0, 2000.0), stiff = linear_params(1e9, 0.0);
+  unsigned long long seed = 4242;
+  double             hn[MAT_NHIST], hc[MAT_NHIST], tau[9], err;
+  int                pl, pl1;
+  MaterialHistoryInit(hn);
+
+  /* elastic, small strain (Swift) */
+  double F[9];
+  for (int i = 0; i < 9; i++) F[i] = (i % 4 == 0 ? 1.0 : 0.0) + 4e-4 * urand(&seed);
+  err = tangent_fd_error(&sw, F, hn, &pl);
+  TU_CHECK(!pl && err < 1e-6, "tangent vs FD, elastic small strain: rel. error %.2e", err);
+
+  /* elastic, finite strain (very high yield stress) */
+  for (int i = 0; i < 9; i++) F[i] = (i % 4 == 0 ? 1.0 : 0.0) + 0.3 * urand(&seed);
+  err = tangent_fd_error(&stiff, F, hn, &pl);
+  TU_CHECK(!pl && err < 1e-6, "tangent vs FD, elastic finite strain (det F = %.3f): rel. error %.2e", t3_det(F), err);
+
+  /* plastic, general non-symmetric F, committed history with Cp^{-1} != I and ep > 0 */
+  const double F1[9] = {1.06, 0.04, -0.03, 0.02, 0.97, 0.05, -0.04, 0.01, 0.99};
+  const double F2[9] = {1.10, 0.09, -0.02, 0.05, 0.94, 0.08, -0.06, 0.04, 1.01};
+  const MaterialParams *mps[2] = {&lin, &sw};
+  const char           *nm[2] = {"linear hardening", "Swift"};
+  for (int c = 0; c < 2; c++) {
+    MaterialUpdate(mps[c], F1, hn, tau, NULL, hc, &pl1);
+    const double cpdev = fabs(hc[0] - 1) + fabs(hc[1] - 1) + fabs(hc[2] - 1) + fabs(hc[3]) + fabs(hc[4]) + fabs(hc[5]);
+    err = tangent_fd_error(mps[c], F2, hc, &pl);
+    TU_CHECK(pl1 && pl && cpdev > 1e-2 && hc[MAT_HIST_EP] > 0 && err < 1e-6,
+             "tangent vs FD, plastic (%s), general F, committed ep = %.4f, sum|Cp^-1 - I| = %.3f: rel. error %.2e", nm[c],
+             hc[MAT_HIST_EP], cpdev, err);
+  }
+
+  /* two equal trial eigenvalues: F = R diag(l1, l2, l2), elastic and plastic; F = I (triple) */
+  double R[9], Fd[9];
+  random_rotation(&seed, R);
+  const double Dp[9] = {1.1, 0, 0, 0, 0.96, 0, 0, 0, 0.96};
+  const double De[9] = {1.0005, 0, 0, 0, 0.99975, 0, 0, 0, 0.99975};
+  t3_mul(R, Dp, Fd);
+  err = tangent_fd_error(&sw, Fd, hn, &pl);
+  TU_CHECK(pl && err < 1e-6, "tangent vs FD, plastic (Swift), two equal trial eigenvalues F = R diag(1.1,0.96,0.96): rel. error %.2e", err);
+  {
+    double FdR[9];
+    t3_mul(R, Dp, FdR);
+    t3_mult(FdR, R, Fd); /* symmetric R D R^T */
+    err = tangent_fd_error(&lin, Fd, hn, &pl);
+    TU_CHECK(pl && err < 1e-6, "tangent vs FD, plastic (linear), two equal eigenvalues F = R D R^T: rel. error %.2e", err);
+  }
+  t3_mul(R, De, Fd);
+  err = tangent_fd_error(&sw, Fd, hn, &pl);
+  TU_CHECK(!pl && err < 1e-6, "tangent vs FD, elastic, two equal trial eigenvalues: rel. error %.2e", err);
+  const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  err = tangent_fd_error(&sw, I, hn, &pl);
+  /* at F = I the exact tangent is the linear elastic one: dtau_ij/dF_kL = lambda d_ij d_kL + G (d_ik d_jL + d_iL d_jk) */
+  double dtau[81], h[MAT_NHIST], C[81], lam = sw.K - 2.0 * sw.G / 3.0;
+  MaterialUpdate(&sw, I, hn, tau, dtau, h, &pl);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      for (int k = 0; k < 3; k++)
+        for (int L = 0; L < 3; L++)
+          C[(3 * i + j) * 9 + 3 * k + L] = lam * (i == j) * (k == L) + sw.G * ((i == k) * (j == L) + (i == L) * (j == k));
+  const double eI = fdiff(dtau, C, 81) / fnorm(C, 81);
+  TU_CHECK(!pl && err < 1e-6 && eI < 1e-14, "tangent at F = I (triple eigenvalue): vs FD %.2e, vs isotropic elasticity tensor %.2e", err, eI);
+}
+
+static void test_failures(void)
+{
+  MaterialParams mp = swift_params();
+  double         hn[MAT_NHIST], h[MAT_NHIST], tau[9], dtau[81];
+  int            pl, rc;
+  MaterialHistoryInit(hn);
+  const double Fbig[9] = {1.3, 0.02, 0, 0, 0.88, 0, 0.01, 0, 0.87};
+
+  MaterialParams m1 = mp;
+  m1.maxit = 1;
+  rc = MaterialUpdate(&m1, Fbig, hn, tau, dtau, h, &pl);
+  TU_CHECK(rc == MAT_ERR_RETURNMAP && fdiff(h, hn, MAT_NHIST) == 0.0,
+           "maxit = 1, large plastic step (Swift): status %d (MAT_ERR_RETURNMAP = %d), history left at hn", rc, MAT_ERR_RETURNMAP);
+  MaterialParams l1 = linear_params(200.0, 1500.0);
+  l1.maxit = 1;
+  rc = MaterialUpdate(&l1, Fbig, hn, tau, NULL, h, &pl);
+  TU_CHECK(rc == MAT_OK && pl, "maxit = 1, linear hardening: one Newton step is exact, status %d", rc);
+
+  const double Fneg[9] = {-1, 0, 0, 0, 1, 0, 0, 0, 1}, Fzero[9] = {1, 0, 0, 1, 0, 0, 0, 0, 1};
+  const int    rneg = MaterialUpdate(&mp, Fneg, hn, tau, dtau, h, &pl);
+  const int    rzero = MaterialUpdate(&mp, Fzero, hn, tau, dtau, h, &pl);
+  TU_CHECK(rneg == MAT_ERR_JACOBIAN && rzero == MAT_ERR_JACOBIAN, "det F < 0: status %d, det F = 0: status %d (MAT_ERR_JACOBIAN = %d)",
+           rneg, rzero, MAT_ERR_JACOBIAN);
+
+  /* safeguard: Swift with a tiny (1e-12) and zero eps0 (infinite slope at ep = 0) still converges,
+     and the result is on the yield surface q(tau) = sigma_y(ep) */
+  const double e0s[3] = {1e-4, 1e-12, 0.0};
+  for (int c = 0; c < 3; c++) {
+    MaterialParams m = mp;
+    m.sweps0 = e0s[c];
+    double       F[9];
+    const double Fsmall[9] = {1.004, 0, 0, 0, 0.999, 0, 0, 0, 0.999};
+    double       worst = 0.0;
+    int          allok = 1;
+    for (int s = 0; s < 2; s++) {
+      memcpy(F, s == 0 ? Fbig : Fsmall, sizeof F);
+      rc = MaterialUpdate(&m, F, hn, tau, dtau, h, &pl);
+      if (rc != MAT_OK || !pl) allok = 0;
+      const double sy = MaterialYieldStress(&m, h[MAT_HIST_EP], NULL);
+      worst = fmax(worst, fabs(von_mises(tau) - sy) / sy);
+    }
+    TU_CHECK(allok && worst < 1e-11, "Swift eps0 = %g: return map converges for large and small steps, |q - sigma_y|/sigma_y = %.2e",
+             e0s[c], worst);
+  }
+}
+
+static void timing(void)
+{
+  MaterialParams mp = swift_params();
+  double         hn[MAT_NHIST], hc[MAT_NHIST], h[MAT_NHIST], tau[9], dtau[81], acc = 0.0;
+  int            pl;
+  MaterialHistoryInit(hn);
+  const double F1[9] = {1.06, 0.04, -0.03, 0.02, 0.97, 0.05, -0.04, 0.01, 0.99};
+  double       F2[9] = {1.10, 0.09, -0.02, 0.05, 0.94, 0.08, -0.06, 0.04, 1.01};
+  MaterialUpdate(&mp, F1, hn, tau, NULL, hc, &pl);
+  const int       N = 400000;
+  struct timespec t0, t1;
+  for (int pass = 0; pass < 2; pass++) {
+    timespec_get(&t0, TIME_UTC);
+    for (int i = 0; i < N; i++) {
+      F2[0] = 1.10 + 1e-9 * (i & 7);
+      MaterialUpdate(&mp, F2, hc, tau, pass ? NULL : dtau, h, &pl);
+      acc += tau[0] + (pass ? 0.0 : dtau[40]);
+    }
+    timespec_get(&t1, TIME_UTC);
+    const double ns = ((t1.tv_sec - t0.tv_sec) * 1e9 + (t1.tv_nsec - t0.tv_nsec)) / N;
+    printf("# timing: MaterialUpdate plastic (Swift) %s tangent: %.0f ns/call (plastic=%d, checksum %.3e)\n", pass ? "without" : "with",
+           ns, pl, acc);
+  }
+}
+
+int main(void)
+{
+  test_eig();
+  test_setup();
+  test_elastic();
+  test_uniaxial();
+  test_tangent();
+  test_failures();
+  timing();
+  TU_RETURN();
+}
