@@ -12,6 +12,7 @@
 
 /* ---------------------------------------------------------------- case (read-only) */
 typedef enum { MESH_BOX = 0, MESH_BLANK, MESH_GMSH, MESH_INP } MeshSource;
+typedef enum { PREDICTOR_NONE = 0, PREDICTOR_EXTRAPOLATE, PREDICTOR_TANGENT, PREDICTOR_AUTO } Predictor;
 
 typedef struct {
   char      name[ATRITO_NAME_LEN];  /* as listed in -bc_names                          */
@@ -40,7 +41,7 @@ typedef struct {
   /* load stepping */
   PetscReal load_dt0, load_dt_min, load_dt_max, load_cut, load_grow;
   PetscInt  load_grow_its, load_max_cuts, load_max_steps;
-  PetscBool load_extrapolate;
+  Predictor load_predictor;
   /* output */
   char      output_dir[PETSC_MAX_PATH_LEN];
   PetscInt  output_interval;        /* write fields every N converged steps (0: none)  */

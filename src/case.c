@@ -64,7 +64,7 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
   cs->load_grow_its      = 5;
   cs->load_max_cuts      = 10;
   cs->load_max_steps     = 100000;
-  cs->load_extrapolate   = PETSC_TRUE;
+  cs->load_predictor     = PREDICTOR_AUTO;
   cs->output_interval    = 1;
   PetscCall(PetscStrncpy(cs->output_dir, "out", sizeof(cs->output_dir)));
 
@@ -196,7 +196,12 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
     PetscCall(PetscOptionsInt("-load_grow_its", "A step is easy when Newton took at most this many iterations", NULL, cs->load_grow_its, &cs->load_grow_its, NULL));
     PetscCall(PetscOptionsInt("-load_max_cuts", "Successive cuts allowed in one step", NULL, cs->load_max_cuts, &cs->load_max_cuts, NULL));
     PetscCall(PetscOptionsInt("-load_max_steps", "Largest number of converged steps", NULL, cs->load_max_steps, &cs->load_max_steps, NULL));
-    PetscCall(PetscOptionsBool("-load_extrapolate", "Start each step from the linear extrapolation of the last two", NULL, cs->load_extrapolate, &cs->load_extrapolate, NULL));
+    {
+      const char *preds[] = {"none", "extrapolate", "tangent", "auto", "Predictor", "PREDICTOR_", NULL};
+      PetscInt    p       = (PetscInt)cs->load_predictor;
+      PetscCall(PetscOptionsEList("-load_predictor", "Start of each step: the committed state, the extrapolation of the last two, the tangent response to the load increment, or auto (extrapolation when there is a previous step, else tangent)", NULL, preds, 4, preds[p], &p, NULL));
+      cs->load_predictor = (Predictor)p;
+    }
     PetscCheck(cs->load_dt_max > 0 && cs->load_dt_max <= 1, comm, PETSC_ERR_USER_INPUT, "-load_dt_max %g must lie in (0, 1]", (double)cs->load_dt_max);
     PetscCheck(cs->load_dt_min > 0 && cs->load_dt_min <= cs->load_dt0, comm, PETSC_ERR_USER_INPUT, "-load_dt_min %g must lie in (0, first increment %g]", (double)cs->load_dt_min, (double)cs->load_dt0);
     PetscCheck(cs->load_cut > 0 && cs->load_cut < 1, comm, PETSC_ERR_USER_INPUT, "-load_cut_factor %g must lie in (0, 1)", (double)cs->load_cut);

@@ -27,6 +27,11 @@ static PetscErrorCode MeshDataReadGmsh(const char *file, MeshData *m)
   PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open mesh file '%s' (-mesh_file)", file);
   fclose(fp);
   PetscCall(PetscMemzero(m, sizeof(*m)));
+  {
+    PetscBool has; /* physical names become the set names unless the user says otherwise */
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_use_regions", &has));
+    if (!has) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
+  }
   PetscCall(DMPlexCreateGmshFromFile(PETSC_COMM_SELF, file, PETSC_TRUE, &dm));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));

@@ -30,7 +30,7 @@ static const PetscReal HexRef[8][3] = {
 };
 
 /* determinant of dX/dxi of the trilinear hex with corner coordinates xe at reference point xi */
-static PetscErrorCode HexDetJ(const PetscReal xe[8][3], const PetscReal xi[3], PetscReal *det)
+static PetscErrorCode HexDetJ(PetscReal xe[8][3], const PetscReal xi[3], PetscReal *det)
 {
   PetscReal J[3][3] = {{0}};
 
@@ -633,7 +633,7 @@ static PetscErrorCode InpSetAdd(InpCtx *c, PetscInt s, PetscInt id, PetscInt lin
 
   PetscFunctionBeginUser;
   if (set->n == set->cap) {
-    PetscInt cap;
+    PetscInt cap = 0;
     PetscCall(NewCap(c, set->cap, &cap));
     PetscCall(GrowInt(&set->id, set->n, cap));
     PetscCall(GrowInt(&set->line, set->n, cap));
@@ -649,7 +649,7 @@ static PetscErrorCode InpAddNode(InpCtx *c, PetscInt id, const PetscReal x[3], P
 {
   PetscFunctionBeginUser;
   if (c->nv == c->capv) {
-    PetscInt cap;
+    PetscInt cap = 0;
     PetscCall(NewCap(c, c->capv, &cap));
     PetscCall(GrowInt(&c->vid, c->nv, cap));
     PetscCall(GrowInt(&c->vline, c->nv, cap));
@@ -667,7 +667,7 @@ static PetscErrorCode InpAddElement(InpCtx *c, const PetscInt v[9], PetscInt lin
 {
   PetscFunctionBeginUser;
   if (c->ne == c->cape) {
-    PetscInt cap;
+    PetscInt cap = 0;
     PetscCall(NewCap(c, c->cape, &cap));
     PetscCall(GrowInt(&c->eid, c->ne, cap));
     PetscCall(GrowInt(&c->eline, c->ne, cap));
@@ -692,7 +692,7 @@ typedef enum {
 typedef struct {
   InpBlock  blk;
   PetscInt  set;      /* set receiving the ids of this block, or -1 */
-  PetscBool generate; /* *NSET/*ELSET, GENERATE                     */
+  PetscBool generate; /* GENERATE on *NSET or *ELSET               */
   PetscBool isnode;   /* *NSET (else *ELSET)                        */
   PetscInt  pend[9];  /* element data collected so far              */
   PetscInt  npend, pendline;

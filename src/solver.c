@@ -303,6 +303,37 @@ PetscErrorCode ProblemSetUp(Problem *pb)
   PetscFunctionReturn(0);
 }
 
+/* Tangent predictor: U = Uc - J(Uc)^-1 [R(Uc, lam_c) + dR/dlam dl], the response of the committed
+   state, linearised, to the increment of the prescribed displacements (the derivative along the
+   load by a one-sided difference: it only seeds Newton, the Jacobian itself stays exact). */
+static PetscErrorCode TangentPredictor(Problem *pb, SNES snes, Mat J, Vec R, Vec W, PetscReal lam_c, PetscReal dl, PetscBool *ok)
+{
+  KSP                 ksp;
+  KSPConvergedReason  kr;
+  const PetscReal     eps = 1e-6;
+
+  PetscFunctionBeginUser;
+  *ok = PETSC_FALSE;
+  pb->lambda = lam_c;
+  PetscCall(FormJacobian(snes, pb->Uc, J, J, pb));
+  if (pb->ndomain_err) PetscFunctionReturn(0);
+  PetscCall(FormFunction(snes, pb->Uc, W, pb));
+  pb->lambda = lam_c + eps * dl;
+  PetscCall(FormFunction(snes, pb->Uc, R, pb));
+  if (pb->ndomain_err) PetscFunctionReturn(0);
+  /* R <- W + (R - W)/eps */
+  PetscCall(VecAXPBY(R, 1.0 - 1.0 / eps, 1.0 / eps, W));
+  PetscCall(VecScale(R, -1.0));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPSetOperators(ksp, J, J));
+  PetscCall(KSPSolve(ksp, R, W));
+  PetscCall(KSPGetConvergedReason(ksp, &kr));
+  if (kr < 0) PetscFunctionReturn(0);
+  PetscCall(VecWAXPY(pb->U, 1.0, pb->Uc, W));
+  *ok = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 static const char *FailureCause(Problem *pb, SNESConvergedReason reason, char *buf, size_t len)
 {
   if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN) {
@@ -321,7 +352,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   KSP          ksp;
   PC           pc;
   Mat          J;
-  Vec          R;
+  Vec          R, W;
   FILE        *hist = NULL;
   OutputFields of   = NULL;
   OutputMap    om;
@@ -342,6 +373,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(DMCreateMatrix(pb->dm, &J));
   PetscCall(MatSetOption(J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(VecDuplicate(pb->U, &R));
+  PetscCall(VecDuplicate(pb->U, &W));
   PetscCall(SNESCreate(pb->comm, &snes));
   PetscCall(SNESSetFunction(snes, R, FormFunction, pb));
   PetscCall(SNESSetJacobian(snes, J, J, FormJacobian, pb));
@@ -372,7 +404,13 @@ PetscErrorCode ProblemSolve(Problem *pb)
       lam_t      = lam_c + dl;
       pb->lambda = lam_t;
       PetscCall(VecCopy(pb->Uc, pb->U));
-      if (cs->load_extrapolate && dl_prev > 0) PetscCall(VecAXPBYPCZ(pb->U, -dl / dl_prev, dl / dl_prev, 1.0, pb->Uprev, pb->Uc));
+      const PetscBool extrapolate = (cs->load_predictor == PREDICTOR_EXTRAPOLATE || cs->load_predictor == PREDICTOR_AUTO) && dl_prev > 0;
+      if (cs->load_predictor == PREDICTOR_TANGENT || (cs->load_predictor == PREDICTOR_AUTO && !extrapolate)) {
+        PetscBool ok;
+        PetscCall(TangentPredictor(pb, snes, J, R, W, lam_c, dl, &ok));
+        if (!ok) PetscCall(VecCopy(pb->Uc, pb->U));
+      } else if (extrapolate) PetscCall(VecAXPBYPCZ(pb->U, -dl / dl_prev, dl / dl_prev, 1.0, pb->Uprev, pb->Uc));
+      pb->lambda = lam_t;
       PetscCall(SNESSolve(snes, NULL, pb->U));
       PetscCall(SNESGetConvergedReason(snes, &reason));
       PetscCall(SNESGetIterationNumber(snes, &its));
@@ -415,6 +453,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(SNESDestroy(&snes));
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&R));
+  PetscCall(VecDestroy(&W));
   PetscFunctionReturn(0);
 }
 

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Test runner: every test program prints one line per check, "ok - ..." or "not ok - ...";
+# this script runs them all and ends with the line "N passed, N failed".
+set -u
+cd "$(dirname "$0")/.."
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
+export PYTHON=${PYTHON:-python3}
+export TEST_OUT=${TEST_OUT:-build/test-out}
+rm -rf "$TEST_OUT"; mkdir -p "$TEST_OUT"
+pass=0; fail=0
+
+run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit without a failed check is a failure
+  local name=$1; shift
+  local log="$TEST_OUT/$name.log" t0=$SECONDS
+  "$@" >"$log" 2>&1; local rc=$?
+  local p f
+  p=$(grep -c '^ok ' "$log"); f=$(grep -c '^not ok ' "$log")
+  grep -E '^(ok|not ok) ' "$log" | sed "s/^/[$name] /"
+  if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+    f=1; echo "[$name] not ok - exited with status $rc"; tail -n 15 "$log" | sed 's/^/    /'
+  fi
+  if [ "$p" -eq 0 ] && [ "$f" -eq 0 ]; then f=1; echo "[$name] not ok - ran no check"; fi
+  echo "[$name] $p passed, $f failed ($((SECONDS - t0)) s)"
+  pass=$((pass + p)); fail=$((fail + f))
+}
+
+run material        bin/test_material
+run fe              bin/test_fe
+run meshgen         bin/test_meshgen
+run output-np1      mpiexec -n 1 bin/test_output -output_dir "$TEST_OUT/output1"
+run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
+run solver          bash tests/test_solver.sh
+run bad-input       bash tests/test_bad_input.sh
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
