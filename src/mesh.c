@@ -38,7 +38,12 @@ static PetscErrorCode MeshDataReadGmsh(const char *file, MeshData *m)
   m->ne = cEnd - cStart;
   m->nv = vEnd - vStart;
   PetscCheck(m->ne > 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "mesh file '%s' holds no 3D cells", file);
-  PetscCall(PetscMalloc5(3 * m->nv, &m->X, 8 * m->ne, &m->conn, m->nv, &m->node_id, m->ne, &m->elem_id, 1, &m->elsets));
+  /* separate allocations: MeshDataDestroy frees each array on its own */
+  PetscCall(PetscMalloc1(3 * m->nv, &m->X));
+  PetscCall(PetscMalloc1(8 * m->ne, &m->conn));
+  PetscCall(PetscMalloc1(m->nv, &m->node_id));
+  PetscCall(PetscMalloc1(m->ne, &m->elem_id));
+  PetscCall(PetscCalloc1(1, &m->elsets));
   PetscCall(DMGetCoordinatesLocal(dm, &coords));
   PetscCall(VecGetArrayRead(coords, &xa));
   for (PetscInt i = 0; i < 3 * m->nv; i++) m->X[i] = PetscRealPart(xa[i]);

@@ -174,8 +174,8 @@ PetscErrorCode MeshDataCreateBox(const PetscReal lo[3], const PetscReal hi[3], c
   PetscCheck(m, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "box: output MeshData pointer is NULL");
   PetscCall(PetscMemzero(m, sizeof(*m)));
   for (PetscInt d = 0; d < 3; d++) {
-    PetscCheck(n[d] >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "box: number of cells %" PetscInt_FMT " in the %c direction must be >= 1", n[d], dname[d]);
-    PetscCheck(!PetscIsInfOrNanReal(lo[d]) && !PetscIsInfOrNanReal(hi[d]) && hi[d] > lo[d], PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "box: upper bound %g must exceed lower bound %g in the %c direction", (double)hi[d], (double)lo[d], dname[d]);
+    PetscCheck(n[d] >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "box: number of cells %" PetscInt_FMT " in the %c direction (-box_cells) must be >= 1", n[d], dname[d]);
+    PetscCheck(!PetscIsInfOrNanReal(lo[d]) && !PetscIsInfOrNanReal(hi[d]) && hi[d] > lo[d], PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "box: upper bound %g (-box_upper) must exceed lower bound %g (-box_lower) in the %c direction", (double)hi[d], (double)lo[d], dname[d]);
   }
   nx   = n[0];
   ny   = n[1];
@@ -237,13 +237,13 @@ PetscErrorCode MeshDataCreateBlank(PetscReal R, PetscReal t, PetscReal core, Pet
   PetscFunctionBeginUser;
   PetscCheck(m, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "blank: output MeshData pointer is NULL");
   PetscCall(PetscMemzero(m, sizeof(*m)));
-  PetscCheck(R > 0 && !PetscIsInfOrNanReal(R), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: radius %g must be > 0", (double)R);
-  PetscCheck(t > 0 && !PetscIsInfOrNanReal(t), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: thickness %g must be > 0", (double)t);
-  PetscCheck(core > 0 && core < 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: core fraction %g must lie in (0,1)", (double)core);
-  PetscCheck(core * PetscSqrtReal(2.0) < 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: core fraction %g puts the corner of the central square at radius %g*R, outside the rim: it must be below 1/sqrt(2) = 0.7071", (double)core, (double)(core * PetscSqrtReal(2.0)));
-  PetscCheck(ncore >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: ncore %" PetscInt_FMT " (cells along each edge of the core square) must be >= 1", ncore);
-  PetscCheck(nradial >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: nradial %" PetscInt_FMT " (cells from the core to the rim) must be >= 1", nradial);
-  PetscCheck(nlayers >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: nlayers %" PetscInt_FMT " (cells through the thickness) must be >= 1", nlayers);
+  PetscCheck(R > 0 && !PetscIsInfOrNanReal(R), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: radius %g (-blank_radius) must be > 0", (double)R);
+  PetscCheck(t > 0 && !PetscIsInfOrNanReal(t), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: thickness %g (-blank_thickness) must be > 0", (double)t);
+  PetscCheck(core > 0 && core < 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: core fraction %g must lie in (0,1) (-blank_core)", (double)core);
+  PetscCheck(core * PetscSqrtReal(2.0) < 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: core fraction %g puts the corner of the central square at radius %g*R, outside the rim: it must be below 1/sqrt(2) = 0.7071 (-blank_core)", (double)core, (double)(core * PetscSqrtReal(2.0)));
+  PetscCheck(ncore >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: ncore %" PetscInt_FMT " (-blank_core_cells, cells along each edge of the core square) must be >= 1", ncore);
+  PetscCheck(nradial >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: nradial %" PetscInt_FMT " (-blank_radial_cells, cells from the core to the rim) must be >= 1", nradial);
+  PetscCheck(nlayers >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: nlayers %" PetscInt_FMT " (-blank_layers, cells through the thickness) must be >= 1", nlayers);
   {
     const PetscInt64 q2 = (PetscInt64)(nc + 1) * (nc + 1) + (PetscInt64)(2 * nc + 1) * nr;
     const PetscInt64 c2 = (PetscInt64)nc * nc + (PetscInt64)2 * nc * nr;
@@ -414,7 +414,7 @@ PetscErrorCode MeshDataCreateBlank(PetscReal R, PetscReal t, PetscReal core, Pet
     PetscCall(HexIsValid(m->X, &m->conn[8 * e], &ok));
     if (!ok) {
       PetscCall(MeshDataDestroy(m));
-      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: cell %" PetscInt_FMT " is inverted or degenerate for R %g, core %g, ncore %" PetscInt_FMT ", nradial %" PetscInt_FMT "; use a smaller core fraction", e + 1, (double)R, (double)core, nc, nr);
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "blank: cell %" PetscInt_FMT " is inverted or degenerate for R %g, core %g, ncore %" PetscInt_FMT ", nradial %" PetscInt_FMT " (internal error or extreme -blank_core)", e + 1, (double)R, (double)core, nc, nr);
     }
   }
   PetscFunctionReturn(0);

@@ -400,8 +400,8 @@ PetscErrorCode ProblemSolve(Problem *pb)
 
     PetscCheck(step < cs->load_max_steps, pb->comm, PETSC_ERR_NOT_CONVERGED, "-load_max_steps %" PetscInt_FMT " reached at load %g", cs->load_max_steps, (double)lam_c);
     for (;;) {
-      dl = PetscMin(dl, 1.0 - lam_c);
-      lam_t      = lam_c + dl;
+      dl    = PetscMin(dl, 1.0 - lam_c);
+      lam_t = (1.0 - lam_c - dl < 1e-12) ? 1.0 : lam_c + dl; /* the last step ends exactly at 1 */
       pb->lambda = lam_t;
       PetscCall(VecCopy(pb->Uc, pb->U));
       const PetscBool extrapolate = (cs->load_predictor == PREDICTOR_EXTRAPOLATE || cs->load_predictor == PREDICTOR_AUTO) && dl_prev > 0;
