@@ -35,6 +35,7 @@ typedef struct {
   /* material and element */
   MaterialParams mat;
   ElementOptions elem;
+  PetscBool      assembly_coo;  /* Jacobian by coordinate (COO) assembly instead of MatSetValues */
   /* boundary conditions */
   PetscInt nbc;
   BCSpec   bc[ATRITO_MAX_BC];
@@ -72,7 +73,11 @@ typedef struct {
   PetscInt *cv;        /* nc*8 local vertex indices, standard hex8 order               */
   PetscReal *X;        /* nv*3 reference coordinates                                   */
   PetscInt *vloff;     /* nv: offset of the vertex's 3 dofs in the local vector        */
-  PetscInt *cgdof;     /* nc*24 global dof of each element dof, -1 where constrained   */
+  PetscInt *cgdof;     /* nc*24: the element's unconstrained global dofs, sorted          */
+  unsigned char *cperm;/* nc*24: the element-local dof (3a+c) of each of them             */
+  PetscInt *cndof;     /* nc: how many                                                   */
+  PetscCount  *coo_off; /* coordinate assembly: offset of each element block in coo_v    */
+  PetscScalar *coo_v;
   PetscBool *vowned;   /* nv                                                           */
   PetscInt *node_id, *elem_id; /* source ids (1-based) per local vertex / cell          */
   PetscInt  nv_global, ne_global;

@@ -148,6 +148,7 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
       PetscCheck(cs->mat.swn >= 0 && cs->mat.swn < 1, comm, PETSC_ERR_USER_INPUT, "-material_swift_n %g must lie in [0, 1)", (double)cs->mat.swn);
     }
     PetscCheck(MaterialParamsSetup(&cs->mat) == 0, comm, PETSC_ERR_USER_INPUT, "invalid material parameters");
+    PetscCall(PetscOptionsBool("-assembly_coo", "Assemble the Jacobian in coordinate form (faster, more memory)", NULL, cs->assembly_coo, &cs->assembly_coo, NULL));
     PetscCall(PetscOptionsBool("-fe_fbar", "F-bar treatment of the volumetric part", NULL, fbar, &fbar, NULL));
     cs->elem.fbar = fbar ? 1 : 0;
 

@@ -142,47 +142,37 @@ int hex8_element(const MaterialParams *mp, const ElementOptions *eo, const doubl
     }
 
     if (!ke) continue;
-    /* Hm[ij][b][m] = alpha Tau_ij,mL dN_b/dX_L */
-    double Hm[9][8][3];
+    /* All three terms in the form K_ai,bm += sum_j g_aj Hm[ij][bm]:
+         material   Hm[ij][bm]  = alpha Tau_ij,mL dN_b/dX_L
+         F-bar      Hm[ij][bm] += alpha/3 TF_ij (g0_bm - g_bm),  TF_ij = Tau_ij,kL F_kL
+         geometric  Hm[in][bn] -= taubar_ij g_bj   (for m = n)                          */
+    double Hm[9][24], c3 = alpha / 3.0, dg[24];
     for (int ij = 0; ij < 9; ij++) {
       const double *T = dtau + 9 * ij;
       for (int b = 0; b < 8; b++)
-        for (int m = 0; m < 3; m++) Hm[ij][b][m] = alpha * (T[3 * m] * dNdX[b][0] + T[3 * m + 1] * dNdX[b][1] + T[3 * m + 2] * dNdX[b][2]);
+        for (int m = 0; m < 3; m++) Hm[ij][3 * b + m] = alpha * (T[3 * m] * dNdX[b][0] + T[3 * m + 1] * dNdX[b][1] + T[3 * m + 2] * dNdX[b][2]);
     }
-    /* material part */
-    for (int a = 0; a < 8; a++)
-      for (int i = 0; i < 3; i++) {
-        double *row = ke + (3 * a + i) * 24;
-        const double ga0 = w * g[a][0], ga1 = w * g[a][1], ga2 = w * g[a][2];
-        const double *H0 = &Hm[3 * i][0][0], *H1 = &Hm[3 * i + 1][0][0], *H2 = &Hm[3 * i + 2][0][0];
-        for (int bm = 0; bm < 24; bm++) row[bm] += ga0 * H0[bm] + ga1 * H1[bm] + ga2 * H2[bm];
-      }
-    /* geometric part: - taubar_ij g_bj g_am */
-    double s_[8][3];
-    for (int b = 0; b < 8; b++)
-      for (int i = 0; i < 3; i++) s_[b][i] = w * (tau[3 * i] * g[b][0] + tau[3 * i + 1] * g[b][1] + tau[3 * i + 2] * g[b][2]);
-    for (int a = 0; a < 8; a++)
-      for (int i = 0; i < 3; i++) {
-        double *row = ke + (3 * a + i) * 24;
-        for (int b = 0; b < 8; b++)
-          for (int m = 0; m < 3; m++) row[3 * b + m] -= s_[b][i] * g[a][m];
-      }
-    /* F-bar coupling: alpha/3 (g_aj TF_ij) (g0_bm - g_bm) */
     if (eo->fbar) {
-      double TF[9];
+      for (int b = 0; b < 8; b++)
+        for (int m = 0; m < 3; m++) dg[3 * b + m] = c3 * (g0[b][m] - g[b][m]);
       for (int ij = 0; ij < 9; ij++) {
         double t = 0;
         for (int kL = 0; kL < 9; kL++) t += dtau[9 * ij + kL] * F[kL];
-        TF[ij] = t;
+        for (int bm = 0; bm < 24; bm++) Hm[ij][bm] += t * dg[bm];
       }
-      const double c = w * alpha / 3.0;
-      for (int a = 0; a < 8; a++)
-        for (int i = 0; i < 3; i++) {
-          const double v = c * (g[a][0] * TF[3 * i] + g[a][1] * TF[3 * i + 1] + g[a][2] * TF[3 * i + 2]);
-          double      *row = ke + (3 * a + i) * 24;
-          for (int b = 0; b < 8; b++)
-            for (int m = 0; m < 3; m++) row[3 * b + m] += v * (g0[b][m] - g[b][m]);
-        }
+    }
+    for (int b = 0; b < 8; b++)
+      for (int i = 0; i < 3; i++) {
+        const double sb = tau[3 * i] * g[b][0] + tau[3 * i + 1] * g[b][1] + tau[3 * i + 2] * g[b][2];
+        for (int n = 0; n < 3; n++) Hm[3 * i + n][3 * b + n] -= sb;
+      }
+    for (int a = 0; a < 8; a++) {
+      const double ga0 = w * g[a][0], ga1 = w * g[a][1], ga2 = w * g[a][2];
+      for (int i = 0; i < 3; i++) {
+        double       *row = ke + (3 * a + i) * 24;
+        const double *H0 = Hm[3 * i], *H1 = Hm[3 * i + 1], *H2 = Hm[3 * i + 2];
+        for (int bm = 0; bm < 24; bm++) row[bm] += ga0 * H0[bm] + ga1 * H1[bm] + ga2 * H2[bm];
+      }
     }
   }
   if (info) info->nplastic = nplastic;

@@ -5,6 +5,7 @@
    evaluation recomputes hist_t (trial) from hist_c and the current iterate. */
 #include <math.h>
 #include <string.h>
+#include <stdlib.h>
 #include "atrito.h"
 #include "tensor.h"
 #include "output.h"
@@ -22,7 +23,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
   const PetscScalar *u;
   PetscScalar       *f = NULL;
   PetscInt           nfail = 0, badid = PETSC_MAX_INT, badst = 0;
-  double             ke[24 * 24];
+  double             ke[24 * 24], kc[24 * 24];
   PetscInt           gfail[2];
 
   PetscFunctionBeginUser;
@@ -33,7 +34,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
     PetscCall(VecZeroEntries(pb->Floc));
     PetscCall(VecGetArray(pb->Floc, &f));
   }
-  if (J) PetscCall(MatZeroEntries(J));
+  if (J && !pb->coo_v) PetscCall(MatZeroEntries(J));
   for (PetscInt e = 0; e < pb->nc; e++) {
     double         X[8][3], ue[8][3], fe[24];
     const PetscInt *cv = pb->cv + 8 * e;
@@ -60,11 +61,24 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
         const PetscInt o = pb->vloff[cv[a]];
         for (int i = 0; i < 3; i++) f[o + i] += fe[3 * a + i];
       }
-    if (J) PetscCall(MatSetValues(J, 24, pb->cgdof + 24 * e, 24, pb->cgdof + 24 * e, ke, ADD_VALUES));
+    if (J) {
+      const PetscInt       n = pb->cndof[e];
+      const unsigned char *p = pb->cperm + 24 * e;
+      if (pb->coo_v) {
+        PetscScalar *v = pb->coo_v + pb->coo_off[e];
+        for (PetscInt r = 0; r < n; r++)
+          for (PetscInt c = 0; c < n; c++) v[r * n + c] = ke[p[r] * 24 + p[c]];
+      } else {
+        for (PetscInt r = 0; r < n; r++)
+          for (PetscInt c = 0; c < n; c++) kc[r * n + c] = ke[p[r] * 24 + p[c]];
+        PetscCall(MatSetValues(J, n, pb->cgdof + 24 * e, n, pb->cgdof + 24 * e, kc, ADD_VALUES));
+      }
+    }
   }
   PetscCall(VecRestoreArray(pb->Uloc, (PetscScalar **)&u));
   if (residual) PetscCall(VecRestoreArray(pb->Floc, &f));
-  if (J) {
+  if (J && pb->coo_v) PetscCall(MatSetValuesCOO(J, pb->coo_v, INSERT_VALUES));
+  else if (J) {
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   }
@@ -372,6 +386,29 @@ PetscErrorCode ProblemSolve(Problem *pb)
 
   PetscCall(DMCreateMatrix(pb->dm, &J));
   PetscCall(MatSetOption(J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  if (cs->assembly_coo) {
+    /* coordinate assembly: the element blocks' (i, j) once; each Jacobian then only fills values */
+    PetscCount ncoo = 0;
+    PetscInt  *ci, *cj;
+    PetscCall(PetscMalloc1(pb->nc + 1, &pb->coo_off));
+    for (PetscInt e = 0; e < pb->nc; e++) {
+      pb->coo_off[e] = ncoo;
+      ncoo += pb->cndof[e] * pb->cndof[e];
+    }
+    pb->coo_off[pb->nc] = ncoo;
+    PetscCall(PetscMalloc2(ncoo, &ci, ncoo, &cj));
+    for (PetscInt e = 0; e < pb->nc; e++) {
+      const PetscInt n = pb->cndof[e], *g = pb->cgdof + 24 * e;
+      for (PetscInt r = 0; r < n; r++)
+        for (PetscInt c = 0; c < n; c++) {
+          ci[pb->coo_off[e] + r * n + c] = g[r];
+          cj[pb->coo_off[e] + r * n + c] = g[c];
+        }
+    }
+    PetscCall(MatSetPreallocationCOO(J, ncoo, ci, cj));
+    PetscCall(PetscFree2(ci, cj));
+    PetscCall(PetscCalloc1(ncoo, &pb->coo_v));
+  }
   PetscCall(VecDuplicate(pb->U, &R));
   PetscCall(VecDuplicate(pb->U, &W));
   PetscCall(SNESCreate(pb->comm, &snes));
@@ -382,7 +419,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCLU));
-  if (pb->size > 1) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscCall(SNESSetConvergenceHistory(snes, rhist, itshist, 256, PETSC_TRUE));
   PetscCall(SNESSetFromOptions(snes));
 
@@ -454,6 +491,8 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&R));
   PetscCall(VecDestroy(&W));
+  PetscCall(PetscFree(pb->coo_off));
+  PetscCall(PetscFree(pb->coo_v));
   PetscFunctionReturn(0);
 }
 
