@@ -147,6 +147,12 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
       PetscCheck(cs->mat.sweps0 > 0 && PetscIsNormalReal(cs->mat.sweps0), comm, PETSC_ERR_USER_INPUT, "-material_swift_eps0 %g must be positive", (double)cs->mat.sweps0);
       PetscCheck(cs->mat.swn >= 0 && cs->mat.swn < 1, comm, PETSC_ERR_USER_INPUT, "-material_swift_n %g must lie in [0, 1)", (double)cs->mat.swn);
     }
+    cs->mat.rtol  = 1e-12;
+    cs->mat.maxit = 50;
+    PetscCall(PetscOptionsReal("-material_return_rtol", "Relative tolerance of the local return map", NULL, cs->mat.rtol, &cs->mat.rtol, NULL));
+    PetscCall(PetscOptionsInt("-material_return_maxit", "Iteration limit of the local return map", NULL, cs->mat.maxit, &cs->mat.maxit, NULL));
+    PetscCheck(cs->mat.rtol > 0 && cs->mat.rtol < 1, comm, PETSC_ERR_USER_INPUT, "-material_return_rtol %g must lie in (0, 1)", (double)cs->mat.rtol);
+    PetscCheck(cs->mat.maxit >= 1, comm, PETSC_ERR_USER_INPUT, "-material_return_maxit %d must be >= 1", cs->mat.maxit);
     PetscCheck(MaterialParamsSetup(&cs->mat) == 0, comm, PETSC_ERR_USER_INPUT, "invalid material parameters");
     PetscCall(PetscOptionsBool("-assembly_coo", "Assemble the Jacobian in coordinate form (faster, more memory)", NULL, cs->assembly_coo, &cs->assembly_coo, NULL));
     PetscCall(PetscOptionsBool("-fe_fbar", "F-bar treatment of the volumetric part", NULL, fbar, &fbar, NULL));

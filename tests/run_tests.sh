@@ -5,7 +5,7 @@ set -u
 cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-export PYTHON=${PYTHON:-python3}
+export PYTHON=${PYTHON:-/usr/bin/python3}
 export TEST_OUT=${TEST_OUT:-build/test-out}
 rm -rf "$TEST_OUT"; mkdir -p "$TEST_OUT"
 pass=0; fail=0

@@ -3,6 +3,7 @@
 # that is not a signal (no crash, no core dump), nothing written to the output directory.
 set -u
 cd "$(dirname "$0")/.."
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 OUT=${TEST_OUT:-build/test-out}/bad
 rm -rf "$OUT"; mkdir -p "$OUT"
 n=0
