@@ -1,0 +1,86 @@
+/* Rigid tools: a tool is a set of parametric patches (plane, sphere, cylinder, torus, Coons)
+   moving by a prescribed translation ramped with the load parameter. Geometry kernels on plain
+   arrays (no MPI); options parsing at the module boundary. Tools are small and replicated on
+   every rank. */
+#ifndef ATRITO_TOOL_H
+#define ATRITO_TOOL_H
+#include <petscsys.h>
+
+typedef enum { PATCH_PLANE = 0, PATCH_SPHERE, PATCH_CYLINDER, PATCH_TORUS, PATCH_COONS } PatchType;
+typedef enum { CURVE_LINE = 0, CURVE_ARC } CurveType;
+
+/* A boundary curve of a Coons patch, parametrised by s in [0,1]: a straight segment from a to b,
+   or the circular arc from a to b about the centre c (the shorter way; a and b equidistant from c,
+   not diametrically opposite). */
+typedef struct {
+  CurveType type;
+  double    a[3], b[3], c[3];
+} Curve;
+
+/* Every patch maps (xi, eta) in [0,1]^2 to a point x(xi, eta) of its reference position (the tool
+   at load 0). Parameters per type (angles in radians inside the struct):
+   plane:    x = o + (u0 + xi (u1-u0)) e1 + (v0 + eta (v1-v0)) e2, e1, e2 orthonormal
+   sphere:   centre c, radius R, axis a, reference direction e (unit, normal to a);
+             polar angle th = th0 + xi (th1-th0) from a, azimuth ph = ph0 + eta (ph1-ph0) from e
+   cylinder: axis point c, axis a, ref e, radius R; azimuth ph = ph0 + xi (ph1-ph0), height z = z0 + eta (z1-z0)
+   torus:    centre c, axis a, ref e, major radius R (centre to tube axis), minor radius r;
+             azimuth ph = ph0 + xi (ph1-ph0) about a, tube angle ps = ps0 + eta (ps1-ps0), ps = 0
+             on the outer equator, ps = +pi/2 towards +a
+   coons:    bilinearly blended patch of four curves: bottom C0(xi) (eta = 0), top C1(xi) (eta = 1),
+             left D0(eta) (xi = 0), right D1(eta) (xi = 1); corners must coincide.
+   The contact normal of the patch is sense * (x_xi × x_eta)/|x_xi × x_eta|, sense = +1 or -1 chosen
+   so that it points out of the tool, towards the deformable body. */
+typedef struct {
+  PatchType type;
+  int       sense;
+  double    o[3], e1[3], e2[3], u0, u1, v0, v1;      /* plane */
+  double    c[3], a[3], e[3], R, r;                   /* sphere, cylinder, torus */
+  double    t0, t1, s0, s1;                           /* parameter ranges: first, second parameter */
+  Curve     C0, C1, D0, D1;                           /* coons */
+} Patch;
+
+typedef struct {
+  char    name[PETSC_MAX_PATH_LEN];
+  int     npatch;
+  Patch  *patch;
+  double  motion[3];     /* translation at load parameter 1 (ramped linearly); zero for a fixed tool */
+  double  bbox[6];       /* reference bounding box of all patches: xmin, xmax, ymin, ymax, zmin, zmax */
+} Tool;
+
+/* Evaluation of a patch at (xi, eta) in its reference position: point x, first derivatives
+   xu = dx/dxi, xv = dx/deta, and (if not NULL) second derivatives xuu, xuv, xvv. Also valid
+   somewhat outside [0,1]^2 (natural extension), which the projection uses. */
+void PatchEval(const Patch *p, double xi, double eta, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv);
+/* Unit contact normal at (xi, eta) (see above); returns |x_xi × x_eta| (0 at a degenerate point) */
+double PatchNormal(const Patch *p, double xi, double eta, double n[3]);
+
+/* Result of projecting a point y on a tool */
+typedef struct {
+  int    patch;        /* index of the patch of the closest point                               */
+  double xi, eta;      /* its parameters                                                        */
+  double x[3];         /* the closest point (current tool position)                             */
+  double n[3];         /* unit contact normal there                                             */
+  double gap;          /* signed distance (y - x).n : negative when y has penetrated the tool    */
+  int    interior;     /* 1 if (xi,eta) is inside [0,1]^2 (0: clamped to an edge or a corner)    */
+} Projection;
+
+/* Closest point of y on the tool displaced by `shift` (the tool's current translation):
+   every patch is tried (a bounding-box test first), each by Newton on (xi, eta) with a safeguarded
+   fallback (clamped to [0,1]^2, a sampling start when Newton fails); among the patches the
+   interior solution of smallest |y - x| wins, so that a point beyond one patch's edge moves to the
+   neighbouring patch. Returns 0 on success, 1 if no patch gave a point. `maxdist`: patches whose
+   bounding box lies farther than this from y are skipped (PETSC_INFINITY: none). */
+int ToolProject(const Tool *t, const double shift[3], const double y[3], double maxdist, Projection *pr);
+
+/* Derivative of the contact normal with respect to the projected point's position y for the
+   analytic surfaces (plane: 0; sphere, cylinder, torus: the curvature of the offset surface
+   through y). dn[3*i+j] = d n_i / d y_j. Returns 0, or 1 for a Coons patch (no analytic form). */
+int PatchNormalDerivative(const Patch *p, const double shift[3], const double y[3], const Projection *pr, double dn[9]);
+
+/* Options: -tool_names a,b and per tool -tool_<name>_... (see doc/tools.md). Collective;
+   errors name the option and value. */
+PetscErrorCode ToolsCreateFromOptions(MPI_Comm comm, PetscInt *ntools, Tool **tools);
+PetscErrorCode ToolsDestroy(PetscInt ntools, Tool **tools);
+/* The tool's translation at load parameter lambda */
+void ToolShift(const Tool *t, double lambda, double shift[3]);
+#endif
