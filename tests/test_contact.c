@@ -1,0 +1,205 @@
+/* Unit tests of the contact kernels: return map (stick, slip, separation), its consistent
+   tangent against finite differences, the nodal tangent on flat and curved tools against finite
+   differences, eq 27 on a flat tool, and the frame recurrence along a great circle. */
+#define _USE_MATH_DEFINES
+#include <stdlib.h>
+#include <string.h>
+#include "testutil.h"
+#include "contact.h"
+
+static double urand(void) { return 2.0 * rand() / (double)RAND_MAX - 1.0; }
+static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double norm3(const double a[3]) { return sqrt(dot(a, a)); }
+
+/* a rigid sphere (centre c, radius Rs), contact from outside: n = (y - c)/|y - c|, g = |y - c| - Rs */
+static void sphere_geom(const double c[3], double Rs, const double y[3], double *g, double n[3], double dn[9])
+{
+  double r[3] = {y[0] - c[0], y[1] - c[1], y[2] - c[2]}, rho = norm3(r);
+  for (int i = 0; i < 3; i++) n[i] = r[i] / rho;
+  *g = rho - Rs;
+  if (dn)
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) dn[3 * i + j] = ((i == j) - n[i] * n[j]) / rho;
+}
+
+/* residual of a node at y on the sphere, slip measured from yn (tool fixed) */
+static int node_on_sphere(const ContactLaw *law, const double c[3], double Rs, const double y[3], const double yn[3], const double seed[3], const double tTn[2], double R[3], double *K, double t1[3], double tT[2])
+{
+  double g, n[3], dn[9], ds[3], tN;
+  sphere_geom(c, Rs, y, &g, n, dn);
+  for (int i = 0; i < 3; i++) ds[i] = y[i] - yn[i];
+  return ContactNodeEval(law, g, n, dn, seed, tTn, ds, R, K, t1, &tN, tT);
+}
+
+int main(void)
+{
+  ContactLaw law = {1e5, 5e3, 0.15};
+  srand(4321);
+
+  /* return map: stick, slip, the cone, separation */
+  {
+    double tTn[2] = {10, -5}, dg[2] = {1e-3, 2e-3}, tT[2], Y[6];
+    const double tN = 1e4; /* cone radius 1500 */
+    int st = ContactReturnMap(&law, tTn, dg, tN, tT, Y);
+    TU_CHECK(st == CONTACT_STICK && fabs(tT[0] - 15) < 1e-12 && fabs(tT[1] - 5) < 1e-12, "return map: stick below the cone, tT = (%g, %g) = tTn + K_T dg", tT[0], tT[1]);
+    dg[0] = 0.4;
+    dg[1] = -0.3;
+    st    = ContactReturnMap(&law, tTn, dg, tN, tT, Y);
+    const double te[2] = {tTn[0] + law.KT * dg[0], tTn[1] + law.KT * dg[1]};
+    const double r = sqrt(tT[0] * tT[0] + tT[1] * tT[1]), cosang = (tT[0] * te[0] + tT[1] * te[1]) / (r * sqrt(te[0] * te[0] + te[1] * te[1]));
+    TU_CHECK(st == CONTACT_SLIP && fabs(r - law.mu * tN) < 1e-9 * tN && fabs(cosang - 1) < 1e-14, "return map: slip returns to the cone |tT| = mu tN (error %.1e) along the predictor (cos %.15f)", fabs(r - law.mu * tN), cosang);
+    double R[3], K[9], t1[3], tNo, n[3] = {0, 0, 1}, s[3] = {1, 0, 0}, ds[3] = {0.1, 0.2, 0};
+    st = ContactNodeEval(&law, 1e-3, n, NULL, s, tTn, ds, R, K, t1, &tNo, tT);
+    TU_CHECK(st == CONTACT_OPEN && norm3(R) == 0 && tNo == 0 && tT[0] == 0 && tT[1] == 0, "separation (g > 0): no force, tangential pressure reset");
+  }
+
+  /* consistent tangent Y (eq 23) against finite differences of the return map */
+  {
+    double worst = 0;
+    for (int k = 0; k < 12; k++) {
+      const double ang = 2 * 3.14159265358979323846 * k / 12.0 + 0.1;
+      double       tTn[2] = {200 * urand(), 200 * urand()}, dg[2] = {0.05 * cos(ang), 0.05 * sin(ang)}, p = 0.01, tT[2], Y[6];
+      int          st = ContactReturnMap(&law, tTn, dg, law.KN * p, tT, Y);
+      if (st != CONTACT_SLIP) continue;
+      for (int col = 0; col < 3; col++) {
+        const double h = 1e-7 * (col < 2 ? 0.05 : p);
+        double       dgp[2] = {dg[0], dg[1]}, dgm[2] = {dg[0], dg[1]}, pp = p, pm = p, tp[2], tm[2];
+        if (col < 2) {
+          dgp[col] += h;
+          dgm[col] -= h;
+        } else {
+          pp += h;
+          pm -= h;
+        }
+        ContactReturnMap(&law, tTn, dgp, law.KN * pp, tp, NULL);
+        ContactReturnMap(&law, tTn, dgm, law.KN * pm, tm, NULL);
+        for (int a = 0; a < 2; a++) {
+          const double fd = (tp[a] - tm[a]) / (2 * h), sc = fmax(fabs(Y[3 * a + col]), law.KT * 1e-3);
+          worst           = fmax(worst, fabs(fd - Y[3 * a + col]) / sc);
+        }
+      }
+    }
+    TU_CHECK(worst < 1e-6, "slip tangent Y (eq 23) vs finite differences, 12 slip directions: largest relative error %.2e", worst);
+  }
+
+  /* flat tool: the nodal tangent is eta^T K eta (stick) and eta^T Y eta (slip) (eqs 26-27) */
+  {
+    const double n[3] = {0, 0.6, 0.8}, s[3] = {1, 0, 0}, tTn[2] = {30, -20};
+    double       R[3], K[9], t1[3], t2[3], tN, tT[2], Y[6], Yfull[9], eta[9], ds[3];
+    const int    cases[2] = {CONTACT_STICK, CONTACT_SLIP};
+    for (int c = 0; c < 2; c++) {
+      const double amp = c == 0 ? 1e-4 : 0.5;
+      ds[0]            = amp;
+      ds[1]            = -0.5 * amp;
+      ds[2]            = 0.3 * amp;
+      const int st     = ContactNodeEval(&law, -0.02, n, NULL, s, tTn, ds, R, K, t1, &tN, tT);
+      ContactFrame(n, s, t1, t2);
+      for (int j = 0; j < 3; j++) {
+        eta[j]     = t1[j];
+        eta[3 + j] = t2[j];
+        eta[6 + j] = n[j];
+      }
+      const double dg[2] = {dot(t1, ds), dot(t2, ds)};
+      double       tt[2];
+      ContactReturnMap(&law, tTn, dg, tN, tt, Y);
+      /* local components (T1, T2, N) of dR with respect to the node's motion: rows t_a, -N (the
+         residual is -f), columns in terms of (dg1, dg2, -penetration) */
+      for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 3; b++) Yfull[3 * a + b] = (b < 2 ? Y[3 * a + b] : -Y[3 * a + 2]);
+      Yfull[6] = Yfull[7] = 0;
+      Yfull[8]            = law.KN;
+      /* eta^T Yfull eta */
+      double maxerr = 0, scale = 0;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+          double v = 0;
+          for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) v += eta[3 * a + i] * Yfull[3 * a + b] * eta[3 * b + j];
+          maxerr        = fmax(maxerr, fabs(v - K[3 * i + j]));
+          scale         = fmax(scale, fabs(K[3 * i + j]));
+        }
+      TU_CHECK(st == cases[c] && maxerr < 1e-12 * scale, "flat tool, %s: nodal tangent = eta^T %s eta (eq 27), error %.1e", c == 0 ? "stick" : "slip", c == 0 ? "K" : "Y", maxerr / scale);
+    }
+  }
+
+  /* nodal tangent on a sphere (curvature and frame rotation included) against finite differences */
+  {
+    const double c[3] = {0.1, -0.2, 0.3}, Rs = 2.0;
+    const char  *label[3] = {"stick", "slip", "frictionless"};
+    for (int k = 0; k < 3; k++) {
+      ContactLaw   lw = law;
+      double       worst = 0;
+      int          status = -1;
+      if (k == 2) lw.mu = 0;
+      for (int trial = 0; trial < 5; trial++) {
+        double dir[3] = {urand(), urand(), urand()}, y[3], yn[3], seed[3] = {urand(), urand(), urand()}, tTn[2] = {50 * urand(), 50 * urand()};
+        const double nd = norm3(dir), pen = 0.01 * (1 + trial);
+        for (int i = 0; i < 3; i++) {
+          y[i]  = c[i] + (Rs - pen) * dir[i] / nd;
+          yn[i] = y[i] + (k == 0 ? 1e-4 : 0.5) * urand();
+        }
+        double R[3], K[9], t1[3], tT[2];
+        const int st = node_on_sphere(&lw, c, Rs, y, yn, seed, tTn, R, K, t1, tT);
+        if (trial == 0 || st != status) status = (trial == 0 ? st : -1);
+        for (int j = 0; j < 3; j++) {
+          const double h = 1e-7;
+          double       yp[3] = {y[0], y[1], y[2]}, ym[3] = {y[0], y[1], y[2]}, Rp[3], Rm[3];
+          yp[j] += h;
+          ym[j] -= h;
+          node_on_sphere(&lw, c, Rs, yp, yn, seed, tTn, Rp, NULL, t1, tT);
+          node_on_sphere(&lw, c, Rs, ym, yn, seed, tTn, Rm, NULL, t1, tT);
+          for (int i = 0; i < 3; i++) worst = fmax(worst, fabs((Rp[i] - Rm[i]) / (2 * h) - K[3 * i + j]) / lw.KN);
+        }
+      }
+      TU_CHECK(worst < 1e-6 && status == (k == 0 ? CONTACT_STICK : CONTACT_SLIP), "sphere, %s: nodal tangent vs finite differences, largest error %.2e (relative to K_N)", label[k], worst);
+    }
+  }
+
+  /* frame recurrence along a great circle of a sphere: t1 stays continuous and orthonormal, and
+     the friction force opposes the slip */
+  {
+    const double c[3] = {0, 0, 0}, Rs = 1.0;
+    const int    N = 400;
+    double       seed[3] = {0, 1, 0}, tTn[2] = {0, 0}, yprev[3], t1prev[3] = {0, 0, 0}, worstjump = 0, worstorth = 0, worstopp = 1;
+    ContactLaw   lw = {1e4, 1e3, 0.3};
+    for (int k = 0; k <= N; k++) {
+      /* node sliding in the x-z plane, slightly inside the sphere */
+      const double th = 0.5 * 3.14159265358979323846 * k / N, r = Rs - 1e-3;
+      const double y[3] = {r * sin(th), 0, r * cos(th)};
+      if (k == 0) {
+        for (int i = 0; i < 3; i++) yprev[i] = y[i];
+        /* first contact: the chord seed, here along the motion */
+        seed[0] = 1;
+        seed[1] = 0.3;
+        seed[2] = 0;
+      }
+      double g, n[3], R[3], t1[3], t2[3], tN, tT[2], ds[3];
+      sphere_geom(c, Rs, y, &g, n, NULL);
+      for (int i = 0; i < 3; i++) ds[i] = y[i] - yprev[i];
+      const int st = ContactNodeEval(&lw, g, n, NULL, seed, tTn, ds, R, NULL, t1, &tN, tT);
+      ContactFrame(n, seed, t1, t2);
+      worstorth = fmax(worstorth, fmax(fabs(dot(t1, n)), fmax(fabs(dot(t1, t2)), fabs(norm3(t1) - 1))));
+      if (k > 0) {
+        const double dth = 0.5 * 3.14159265358979323846 / N, d[3] = {t1[0] - t1prev[0], t1[1] - t1prev[1], t1[2] - t1prev[2]};
+        worstjump        = fmax(worstjump, norm3(d) / dth); /* <= 1: no more than the normal's rotation */
+        if (st == CONTACT_SLIP) {
+          const double f[3] = {-(tT[0] * t1[0] + tT[1] * t2[0]), -(tT[0] * t1[1] + tT[1] * t2[1]), -(tT[0] * t1[2] + tT[1] * t2[2])};
+          const double sn   = dot(ds, n), dsT[3] = {ds[0] - sn * n[0], ds[1] - sn * n[1], ds[2] - sn * n[2]};
+          worstopp          = fmin(worstopp, -dot(f, dsT) / (norm3(f) * norm3(dsT)));
+        }
+      }
+      /* converged step: commit, and the frame seeds the next one (eq 30) */
+      for (int i = 0; i < 3; i++) {
+        seed[i]   = t1[i];
+        t1prev[i] = t1[i];
+        yprev[i]  = y[i];
+      }
+      tTn[0] = tT[0];
+      tTn[1] = tT[1];
+    }
+    TU_CHECK(worstjump <= 1.0 + 1e-9, "frame recurrence on a great circle: largest |dt1|/(rotation of n) = %.6f (<= 1: continuous, no spin)", worstjump);
+    TU_CHECK(worstorth < 1e-14, "frame recurrence: t1, t2, n orthonormal to %.1e", worstorth);
+    TU_CHECK(worstopp > 1 - 1e-9, "friction force opposite to the tangential slip: smallest cos(-f, ds_T) = %.12f", worstopp);
+  }
+  TU_RETURN();
+}
