@@ -6,6 +6,8 @@
 #include <petscsnes.h>
 #include "material.h"
 #include "fe.h"
+#include "contact.h"
+#include "tool.h"
 
 #define ATRITO_MAX_BC   32
 #define ATRITO_NAME_LEN 256
@@ -43,12 +45,33 @@ typedef struct {
   PetscReal load_dt0, load_dt_min, load_dt_max, load_cut, load_grow;
   PetscInt  load_grow_its, load_max_cuts, load_max_steps;
   Predictor load_predictor;
+  /* contact */
+  char       contact_set[ATRITO_NAME_LEN]; /* slave nodes                                  */
+  ContactLaw law;
+  PetscBool  contact_fd;         /* per-node finite-difference tangent instead of the analytic one */
+  PetscReal  contact_search;     /* pairing: skip a tool whose box is farther than this      */
+  PetscReal  symmetry;           /* multiplicity of the model (4 for a quarter)             */
   /* output */
   char      output_dir[PETSC_MAX_PATH_LEN];
   PetscInt  output_interval;        /* write fields every N converged steps (0: none)  */
   PetscBool thickness_output;
   PetscReal thickness_dir[3];       /* reference sheet normal for the thickness strain */
 } Case;
+
+/* ---------------------------------------------------------------- contact state */
+typedef struct {
+  PetscInt  status;     /* CONTACT_OPEN / STICK / SLIP                                   */
+  PetscInt  tool, patch;/* pairing: tool and patch of the closest point, -1 when none      */
+  PetscReal xi, eta;    /* its parameters                                                 */
+  PetscReal tT[2];      /* tangential pressure, components on t1, t2                      */
+  PetscReal t1[3];      /* the local frame's t1 (eqs 28-30)                               */
+  PetscBool has_frame;
+  PetscReal y[3];       /* node position                                                   */
+  PetscReal gap, tN;    /* gap and normal pressure                                         */
+  PetscReal f[3];       /* contact force on the node                                       */
+  PetscReal fT[3];      /* its tangential (friction) part                                  */
+  PetscReal slip;       /* accumulated tangential slip                                     */
+} ContactState;
 
 /* ---------------------------------------------------------------- problem */
 typedef struct {
@@ -98,7 +121,20 @@ typedef struct {
   PetscInt  bad_cell_id;   /* source id of the first failing element, for messages      */
   PetscInt  bad_status;
 
-  PetscLogEvent ev_residual, ev_jacobian;
+  /* contact: tools (replicated), owned slave vertices and their states */
+  PetscInt      ntools;
+  Tool         *tools;
+  PetscInt      ns;            /* owned slave vertices                                       */
+  PetscInt     *slave;         /* their local vertex indices                                 */
+  PetscInt     *sgdof;         /* ns*3 global dofs, -1 where constrained                    */
+  ContactState *cst_c, *cst_t; /* committed and trial                                        */
+  PetscReal    *seed;          /* ns*3 frame seed of the current Newton iteration (eqs 28-30) */
+  PetscBool    *has_seed;
+  PetscReal     lambda_c;      /* load parameter of the committed state                      */
+  PetscInt      contact_fail;  /* projections that failed in the last evaluation            */
+  PetscReal     search;        /* pairing distance                                           */
+
+  PetscLogEvent ev_residual, ev_jacobian, ev_contact, ev_pairing;
 } Problem;
 
 /* case.c */
@@ -118,6 +154,18 @@ PetscErrorCode ProblemResidualLocal(Problem *pb, Vec U, PetscReal lambda);
 PetscErrorCode HistoryOpen(Problem *pb, FILE **fp);
 PetscErrorCode HistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscReal time, PetscInt its, PetscReal r0, PetscReal r);
 PetscErrorCode ProblemReactions(Problem *pb, PetscReal (*R)[3]);
+
+/* contact_problem.c */
+PetscErrorCode ContactSetUp(Problem *pb);
+PetscErrorCode ContactDestroy(Problem *pb);
+/* seeds of the frame recurrence: from the committed frames (step start) or from the frames at
+   the iterate U (start of a Newton iteration); chords for the nodes that have none */
+PetscErrorCode ContactSeed(Problem *pb, Vec Uloc_with_bc, PetscReal lambda, PetscBool from_committed);
+/* contact contributions at the local displacements u (with boundary values) */
+PetscErrorCode ContactAssemble(Problem *pb, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v);
+PetscErrorCode ContactCommit(Problem *pb);
+PetscErrorCode ContactHistoryOpen(Problem *pb, FILE **fp);
+PetscErrorCode ContactHistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscReal time, PetscInt its);
 
 /* util.c */
 /* After work done on rank 0 alone (under PetscReturnErrorHandler), raise its error, with its

@@ -216,6 +216,30 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
     PetscCheck(cs->load_max_cuts >= 0, comm, PETSC_ERR_USER_INPUT, "-load_max_cuts %" PetscInt_FMT " must be >= 0", cs->load_max_cuts);
     PetscCheck(cs->load_max_steps >= 1, comm, PETSC_ERR_USER_INPUT, "-load_max_steps %" PetscInt_FMT " must be >= 1", cs->load_max_steps);
 
+    /* contact */
+    PetscCall(PetscStrncpy(cs->contact_set, "contact", sizeof(cs->contact_set)));
+    PetscCall(PetscOptionsString("-contact_set", "Mesh set of the slave nodes", NULL, cs->contact_set, cs->contact_set, sizeof(cs->contact_set), NULL));
+    cs->law.KN = 1e5;
+    cs->law.KT = 5e3;
+    cs->law.mu = 0;
+    PetscCall(PetscOptionsReal("-contact_penalty_normal", "Normal penalty K_N (force per length, per node)", NULL, cs->law.KN, &cs->law.KN, NULL));
+    PetscCall(PetscOptionsReal("-contact_penalty_tangential", "Tangential penalty K_T (force per length, per node)", NULL, cs->law.KT, &cs->law.KT, NULL));
+    PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient mu", NULL, cs->law.mu, &cs->law.mu, NULL));
+    PetscCheck(cs->law.KN > 0 && PetscIsNormalReal(cs->law.KN), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal %g must be positive", (double)cs->law.KN);
+    PetscCheck(cs->law.KT > 0 && PetscIsNormalReal(cs->law.KT), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_tangential %g must be positive", (double)cs->law.KT);
+    PetscCheck(cs->law.mu >= 0 && (cs->law.mu == 0 || PetscIsNormalReal(cs->law.mu)), comm, PETSC_ERR_USER_INPUT, "-contact_friction %g must be >= 0", (double)cs->law.mu);
+    {
+      const char *tang[] = {"analytic", "fd", "ContactTangent", "CT_", NULL};
+      PetscInt    t      = 0;
+      PetscCall(PetscOptionsEList("-contact_tangent", "Contact tangent: analytic (with curvature) or per-node finite differences", NULL, tang, 2, tang[0], &t, NULL));
+      cs->contact_fd = t == 1 ? PETSC_TRUE : PETSC_FALSE;
+    }
+    cs->contact_search = -1;
+    PetscCall(PetscOptionsReal("-contact_search_distance", "Pairing: tools farther than this from a node are skipped (default: 5% of the largest tool box)", NULL, cs->contact_search, &cs->contact_search, NULL));
+    cs->symmetry = (cs->mesh_source == MESH_BLANK && cs->blank_quarter) ? 4 : 1;
+    PetscCall(PetscOptionsReal("-model_symmetry", "Multiplicity of the model (4 for a quarter): force_full = force * multiplicity", NULL, cs->symmetry, &cs->symmetry, NULL));
+    PetscCheck(cs->symmetry >= 1, comm, PETSC_ERR_USER_INPUT, "-model_symmetry %g must be >= 1", (double)cs->symmetry);
+
     /* output */
     PetscCall(PetscOptionsString("-output_dir", "Output directory", NULL, cs->output_dir, cs->output_dir, sizeof(cs->output_dir), NULL));
     PetscCall(PetscOptionsInt("-output_interval", "Write fields every N converged steps (0: never)", NULL, cs->output_interval, &cs->output_interval, NULL));

@@ -75,6 +75,8 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
       }
     }
   }
+  PetscCall(ContactAssemble(pb, u, lambda, f, J, pb->coo_v ? pb->coo_v + pb->coo_off[pb->nc] : NULL));
+  nfail += pb->contact_fail;
   PetscCall(VecRestoreArray(pb->Uloc, (PetscScalar **)&u));
   if (residual) PetscCall(VecRestoreArray(pb->Floc, &f));
   if (J && pb->coo_v) PetscCall(MatSetValuesCOO(J, pb->coo_v, INSERT_VALUES));
@@ -294,7 +296,40 @@ static PetscErrorCode WriteFields(Problem *pb, OutputFields of, OutputMap *om, P
     cf[2].data  = thick;
     ncf         = 3;
   }
-  PetscCall(OutputFieldsWriteStep(of, step, time, 1, nf, ncf, cf));
+  if (pb->ntools) {
+    /* contact node fields: gap, normal force, tangential (friction) force, status, accumulated slip */
+    PetscReal *cg, *cn, *ct, *cst, *csl;
+    PetscCall(PetscCalloc5(om->nvo, &cg, om->nvo, &cn, 3 * om->nvo, &ct, om->nvo, &cst, om->nvo, &csl));
+    for (PetscInt i = 0; i < pb->ns; i++) {
+      const ContactState *st = &pb->cst_c[i];
+      const PetscInt      r  = om->gnum[pb->slave[i]] - om->voff;
+      cg[r]                  = PetscIsInfReal(st->gap) ? pb->search : st->gap;
+      cn[r]                  = st->tN;
+      cst[r]                 = st->status;
+      csl[r]                 = st->slip;
+      for (int k = 0; k < 3; k++) ct[3 * r + k] = st->fT[k];
+    }
+    OutputField nc[6];
+    PetscInt    nn = 0;
+    nc[nn++]       = nf[0];
+    nc[nn].name    = "contact_gap";
+    nc[nn].ncomp   = 1;
+    nc[nn++].data  = cg;
+    nc[nn].name    = "contact_normal_force";
+    nc[nn].ncomp   = 1;
+    nc[nn++].data  = cn;
+    nc[nn].name    = "contact_tangential_force";
+    nc[nn].ncomp   = 3;
+    nc[nn++].data  = ct;
+    nc[nn].name    = "contact_status";
+    nc[nn].ncomp   = 1;
+    nc[nn++].data  = cst;
+    nc[nn].name    = "contact_slip";
+    nc[nn].ncomp   = 1;
+    nc[nn++].data  = csl;
+    PetscCall(OutputFieldsWriteStep(of, step, time, nn, nc, ncf, cf));
+    PetscCall(PetscFree5(cg, cn, ct, cst, csl));
+  } else PetscCall(OutputFieldsWriteStep(of, step, time, 1, nf, ncf, cf));
   PetscCall(PetscFree4(disp, ep, mises, thick));
   PetscFunctionReturn(0);
 }
@@ -314,6 +349,7 @@ PetscErrorCode ProblemSetUp(Problem *pb)
   PetscCall(VecDuplicate(pb->U, &pb->Uprev));
   PetscCall(DMCreateLocalVector(pb->dm, &pb->Uloc));
   PetscCall(VecDuplicate(pb->Uloc, &pb->Floc));
+  PetscCall(ContactSetUp(pb));
   PetscFunctionReturn(0);
 }
 
@@ -348,6 +384,40 @@ static PetscErrorCode TangentPredictor(Problem *pb, SNES snes, Mat J, Vec R, Vec
   PetscFunctionReturn(0);
 }
 
+/* Start of every Newton iteration: the frame recurrence of eq 30 at the current iterate */
+static PetscErrorCode NewtonUpdate(SNES snes, PetscInt it)
+{
+  Problem *pb;
+  Vec      X;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetApplicationContext(snes, &pb));
+  if (!pb->ns) PetscFunctionReturn(0);
+  PetscCall(SNESGetSolution(snes, &X));
+  PetscCall(DMGlobalToLocal(pb->dm, X, INSERT_VALUES, pb->Uloc));
+  {
+    PetscScalar *u;
+    PetscCall(VecGetArray(pb->Uloc, &u));
+    BoundaryValues(pb, u, pb->lambda);
+    PetscCall(VecRestoreArray(pb->Uloc, &u));
+  }
+  PetscCall(ContactSeed(pb, pb->Uloc, pb->lambda, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/* local vector of a global one with the boundary values at lambda */
+static PetscErrorCode LocalWithBC(Problem *pb, Vec U, PetscReal lambda)
+{
+  PetscScalar *u;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGlobalToLocal(pb->dm, U, INSERT_VALUES, pb->Uloc));
+  PetscCall(VecGetArray(pb->Uloc, &u));
+  BoundaryValues(pb, u, lambda);
+  PetscCall(VecRestoreArray(pb->Uloc, &u));
+  PetscFunctionReturn(0);
+}
+
 static const char *FailureCause(Problem *pb, SNESConvergedReason reason, char *buf, size_t len)
 {
   if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN) {
@@ -367,7 +437,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PC           pc;
   Mat          J;
   Vec          R, W;
-  FILE        *hist = NULL;
+  FILE        *hist = NULL, *chist = NULL;
   OutputFields of   = NULL;
   OutputMap    om;
   PetscReal    lam_c = 0, dl = cs->load_dt0, dl_prev = 0, rhist[256];
@@ -378,6 +448,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(PetscTime(&t0));
   PetscCall(OutputEnsureDirectory(pb->comm, cs->output_dir));
   PetscCall(HistoryOpen(pb, &hist));
+  PetscCall(ContactHistoryOpen(pb, &chist));
   PetscCall(OutputMapCreate(pb, &om));
   if (cs->output_interval > 0) {
     PetscCall(OutputFieldsCreate(pb->comm, cs->output_dir, &of));
@@ -396,6 +467,9 @@ PetscErrorCode ProblemSolve(Problem *pb)
       ncoo += pb->cndof[e] * pb->cndof[e];
     }
     pb->coo_off[pb->nc] = ncoo;
+    for (PetscInt i = 0; i < pb->ns; i++)
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) ncoo += (pb->sgdof[3 * i + r] >= 0 && pb->sgdof[3 * i + c] >= 0);
     PetscCall(PetscMalloc2(ncoo, &ci, ncoo, &cj));
     for (PetscInt e = 0; e < pb->nc; e++) {
       const PetscInt n = pb->cndof[e], *g = pb->cgdof + 24 * e;
@@ -404,6 +478,16 @@ PetscErrorCode ProblemSolve(Problem *pb)
           ci[pb->coo_off[e] + r * n + c] = g[r];
           cj[pb->coo_off[e] + r * n + c] = g[c];
         }
+    }
+    {
+      PetscCount m = pb->coo_off[pb->nc];
+      for (PetscInt i = 0; i < pb->ns; i++)
+        for (int r = 0; r < 3; r++)
+          for (int c = 0; c < 3; c++)
+            if (pb->sgdof[3 * i + r] >= 0 && pb->sgdof[3 * i + c] >= 0) {
+              ci[m]   = pb->sgdof[3 * i + r];
+              cj[m++] = pb->sgdof[3 * i + c];
+            }
     }
     PetscCall(MatSetPreallocationCOO(J, ncoo, ci, cj));
     PetscCall(PetscFree2(ci, cj));
@@ -421,6 +505,8 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(PCSetType(pc, PCLU));
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscCall(SNESSetConvergenceHistory(snes, rhist, itshist, 256, PETSC_TRUE));
+  PetscCall(SNESSetApplicationContext(snes, pb));
+  PetscCall(SNESSetUpdate(snes, NewtonUpdate));
   PetscCall(SNESSetFromOptions(snes));
 
   /* the initial state */
@@ -441,6 +527,9 @@ PetscErrorCode ProblemSolve(Problem *pb)
       lam_t = (1.0 - lam_c - dl < 1e-12) ? 1.0 : lam_c + dl; /* the last step ends exactly at 1 */
       pb->lambda = lam_t;
       PetscCall(VecCopy(pb->Uc, pb->U));
+      /* frame seeds from the committed state (a retry starts again from the committed frames) */
+      PetscCall(LocalWithBC(pb, pb->Uc, lam_c));
+      PetscCall(ContactSeed(pb, pb->Uloc, lam_c, PETSC_TRUE));
       const PetscBool extrapolate = (cs->load_predictor == PREDICTOR_EXTRAPOLATE || cs->load_predictor == PREDICTOR_AUTO) && dl_prev > 0;
       if (cs->load_predictor == PREDICTOR_TANGENT || (cs->load_predictor == PREDICTOR_AUTO && !extrapolate)) {
         PetscBool ok;
@@ -448,6 +537,8 @@ PetscErrorCode ProblemSolve(Problem *pb)
         if (!ok) PetscCall(VecCopy(pb->Uc, pb->U));
       } else if (extrapolate) PetscCall(VecAXPBYPCZ(pb->U, -dl / dl_prev, dl / dl_prev, 1.0, pb->Uprev, pb->Uc));
       pb->lambda = lam_t;
+      PetscCall(LocalWithBC(pb, pb->U, lam_t));
+      PetscCall(ContactSeed(pb, pb->Uloc, lam_t, PETSC_TRUE));
       PetscCall(SNESSolve(snes, NULL, pb->U));
       PetscCall(SNESGetConvergedReason(snes, &reason));
       PetscCall(SNESGetIterationNumber(snes, &its));
@@ -468,6 +559,8 @@ PetscErrorCode ProblemSolve(Problem *pb)
     PetscCall(ProblemResidualLocal(pb, pb->U, lam_t));
     PetscCheck(!pb->ndomain_err, pb->comm, PETSC_ERR_PLIB, "element evaluation failed at a converged state");
     PetscCall(PetscArraycpy(pb->hist_c, pb->hist_t, (size_t)pb->nc * HEX8_NQP * MAT_NHIST));
+    PetscCall(ContactCommit(pb));
+    pb->lambda_c = lam_t;
     PetscCall(VecCopy(pb->Uc, pb->Uprev));
     PetscCall(VecCopy(pb->U, pb->Uc));
     dl_prev = dl;
@@ -476,6 +569,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
     total_its += its;
     PetscCall(SNESGetConvergenceHistory(snes, NULL, NULL, &nres));
     PetscCall(HistoryWrite(pb, hist, step, lam_c, its, rhist[0], rhist[PetscMax(nres - 1, 0)]));
+    PetscCall(ContactHistoryWrite(pb, chist, step, lam_c, its));
     PetscCall(PetscTime(&t1));
     PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0));
     if (of && (step % cs->output_interval == 0 || lam_c >= 1.0 - 1e-12)) PetscCall(WriteFields(pb, of, &om, step, lam_c));
@@ -485,6 +579,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(PetscPrintf(pb->comm, "done: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " cuts, %.2f s\n", step, total_its, total_cuts, t1 - t0));
 
   if (hist) fclose(hist);
+  if (chist) fclose(chist);
   PetscCall(OutputFieldsDestroy(&of));
   PetscCall(PetscFree2(om.vloc, om.gnum));
   PetscCall(SNESDestroy(&snes));
@@ -505,6 +600,7 @@ PetscErrorCode ProblemDestroy(Problem *pb)
   PetscCall(VecDestroy(&pb->Uloc));
   PetscCall(VecDestroy(&pb->Floc));
   PetscCall(PetscFree2(pb->hist_c, pb->hist_t));
+  PetscCall(ContactDestroy(pb));
   PetscCall(ProblemDestroyMesh(pb));
   PetscFunctionReturn(0);
 }
