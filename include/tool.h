@@ -44,6 +44,8 @@ typedef struct {
   int     npatch;
   Patch  *patch;
   double  motion[3];     /* translation at load parameter 1 (ramped linearly); zero for a fixed tool */
+  int     npath;         /* > 0: piecewise-linear path instead: points (load, dx, dy, dz)             */
+  double  path[4 * 32];
   double  bbox[6];       /* reference bounding box of all patches: xmin, xmax, ymin, ymax, zmin, zmax */
 } Tool;
 
@@ -81,6 +83,8 @@ int PatchNormalDerivative(const Patch *p, const double shift[3], const double y[
    errors name the option and value. */
 PetscErrorCode ToolsCreateFromOptions(MPI_Comm comm, PetscInt *ntools, Tool **tools);
 PetscErrorCode ToolsDestroy(PetscInt ntools, Tool **tools);
-/* The tool's translation at load parameter lambda */
+/* The tool's translation at load parameter lambda: lambda * motion, or the piecewise-linear
+   interpolation of its path (-tool_<name>_path l0,dx,dy,dz, l1,dx,dy,dz, ... with 0 = l0 < l1 < ...
+   <= 1; held at the last point beyond it) */
 void ToolShift(const Tool *t, double lambda, double shift[3]);
 #endif

@@ -374,6 +374,13 @@ static PetscErrorCode TangentPredictor(Problem *pb, SNES snes, Mat J, Vec R, Vec
   /* R <- W + (R - W)/eps */
   PetscCall(VecAXPBY(R, 1.0 - 1.0 / eps, 1.0 / eps, W));
   PetscCall(VecScale(R, -1.0));
+  {
+    /* full Newton steps: with penalty contact a backtracking search crawls across active-set
+       changes; a failed step is cut back instead */
+    SNESLineSearch ls;
+    PetscCall(SNESGetLineSearch(snes, &ls));
+    PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  }
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPSetOperators(ksp, J, J));
   PetscCall(KSPSolve(ksp, R, W));

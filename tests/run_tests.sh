@@ -28,9 +28,12 @@ run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit
 run material        bin/test_material
 run fe              bin/test_fe
 run meshgen         bin/test_meshgen
+run tool            bin/test_tool
+run contact-kernels bin/test_contact
 run output-np1      mpiexec -n 1 bin/test_output -output_dir "$TEST_OUT/output1"
 run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
 run solver          bash tests/test_solver.sh
+run contact         bash tests/test_contact.sh
 run bad-input       bash tests/test_bad_input.sh
 
 echo "$pass passed, $fail failed"

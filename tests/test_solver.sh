@@ -103,7 +103,7 @@ $PY - "$OUT/cut_fail" "$rc" <<'PYEOF'
 import csv, re, sys, subprocess
 d, rc = sys.argv[1], int(sys.argv[2])
 log = open(d + ".log").read()
-m = re.search(r"atrito: error: step (\d+) failed at load ([0-9.]+) .* after 3 cuts: (.*); the results up to load ([0-9.]+) are complete", log)
+m = re.search(r"atrito: error: step (\d+) failed at load ([0-9.]+) .* after \d+ cuts: (.*); the results up to load ([0-9.]+) are complete", log)
 rows = list(csv.DictReader(open(d + "/history.csv")))
 whole = all(len(r) == len(rows[0]) and None not in r.values() for r in rows)
 last = float(rows[-1]["time"]) if rows else -1

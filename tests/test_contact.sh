@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Integration tests of frictional contact with rigid tools, at 1 and 2 ranks.
+set -u
+cd "$(dirname "$0")/.."
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+PY=${PYTHON:-/usr/bin/python3}
+OUT=${TEST_OUT:-build/test-out}/contact
+rm -rf "$OUT"; mkdir -p "$OUT"
+MPI="mpiexec --oversubscribe -n"
+
+atrito() { # atrito NP NAME ARGS...
+  local np=$1 name=$2; shift 2
+  if ! timeout 600 $MPI "$np" bin/atrito "$@" -output_dir "$OUT/$name" >"$OUT/$name.log" 2>&1 </dev/null; then
+    echo "not ok - run $name (np=$np) failed:"; tail -n 5 "$OUT/$name.log" | sed 's/^/    /'; return 1
+  fi
+}
+
+# 1. block pressed onto a plane, then dragged: K_T x slip in stick, mu x normal in slip (1e-8)
+atrito 1 drag1 -options_file cases/block_plane_drag.opts && $PY tests/check_block_drag.py "$OUT/drag1" 1e3 0.3
+atrito 2 drag2 -options_file cases/block_plane_drag.opts -output_interval 0
+$PY tests/compare_history.py "$OUT/drag1/contact.csv" "$OUT/drag2/contact.csv" 8 "block on a plane: contact history at np=1 and np=2"
+
+# 2. the exact Jacobian with contact, in stick and in slip, plane and sphere, analytic and
+#    finite-difference nodal tangents
+for tool in plane sphere; do
+  for tan in analytic fd; do
+    name=jac_${tool}_$tan
+    if [ $tool = plane ]; then opts="-options_file cases/block_plane_drag.opts -output_interval 0 -box_cells 2,2,1"
+    else opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1"; fi
+    # shellcheck disable=SC2086
+    atrito 1 $name $opts -contact_tangent $tan -snes_test_jacobian &&
+      $PY - "$OUT/$name" "$tool" "$tan" <<'PYEOF'
+import csv, re, sys
+d, tool, tan = sys.argv[1:4]
+r = [float(x) for x in re.findall(r"\|\|J - Jfd\|\|_F/\|\|J\|\|_F = ([0-9.eE+-]+)", open(d + ".log").read())]
+rows = list(csv.DictReader(open(d + "/contact.csv")))
+stick = sum(int(x["stick"]) > 0 for x in rows); slip = sum(int(x["slip"]) > 0 for x in rows)
+ok = len(r) >= 10 and max(r) < 1e-5 and stick > 0 and slip > 0
+print(("ok" if ok else "not ok") + f" - -snes_test_jacobian with contact on a {tool}, {tan} tangent: {len(r)} Jacobians over {stick} steps with sticking and {slip} with slipping nodes, largest ||J - Jfd||/||J|| = {max(r) if r else float('nan'):.1e}")
+PYEOF
+  done
+done
+
+# 3. quadratic convergence: elastic block pressed into a sphere that then slides, with friction
+atrito 1 quad -options_file cases/block_sphere.opts -output_interval 0 -snes_monitor &&
+  $PY tests/check_quadratic.py "$OUT/quad.log" "elastic block pressed into a sphere with friction (analytic tangent)"
+atrito 1 quadfd -options_file cases/block_sphere.opts -output_interval 0 -snes_monitor -contact_tangent fd &&
+  $PY tests/check_quadratic.py "$OUT/quadfd.log" "the same with the finite-difference nodal tangent"
+
+# 4. 1 and 2 ranks: the same contact and reaction histories to 8 significant digits
+atrito 1 sph1 -options_file cases/block_sphere.opts
+atrito 2 sph2 -options_file cases/block_sphere.opts
+$PY tests/compare_history.py "$OUT/sph1/contact.csv" "$OUT/sph2/contact.csv" 8 "block and sphere: contact history at np=1 and np=2"
+$PY tests/compare_history.py "$OUT/sph1/history.csv" "$OUT/sph2/history.csv" 8 "block and sphere: reactions at np=1 and np=2"
+$PY tests/check_fields.py "$OUT/sph2" -q >/dev/null && $PY - "$OUT/sph2/fields.h5" <<'PYEOF'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+g = f["steps"][sorted(f["steps"].keys())[-1]]
+st, tn, ft = g["contact_status"][:], g["contact_normal_force"][:], g["contact_tangential_force"][:]
+slipping = st == 2
+ratio = np.abs(np.linalg.norm(ft[slipping], axis=1) - 0.3 * tn[slipping]).max() / tn[slipping].max()
+ok = slipping.sum() > 0 and ratio < 1e-10 and all(k in g for k in ("contact_gap", "contact_slip"))
+print(("ok" if ok else "not ok") + f" - contact fields (np=2): {int((st > 0).sum())} nodes in contact, {int(slipping.sum())} slipping with |f_T| = mu t_N to {ratio:.1e}")
+PYEOF

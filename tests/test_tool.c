@@ -1,0 +1,1216 @@
+/* Unit tests of the rigid tools: patch derivatives against finite differences, normals, Coons
+   patches, closest-point projection against brute force (single patches, the sphere's pole,
+   multi-patch tools with seams), the normal derivative against finite differences, options. */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+#include <stdlib.h>
+
+#include "testutil.h"
+#include "tool.h"
+
+static const double PI = 3.14159265358979323846;
+
+/* ------------------------------------------------------------------ small helpers */
+
+static unsigned long long seed = 12345;
+static double             urand(void) /* uniform in [0, 1) (64-bit LCG) */
+{
+  seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+  return (double)(seed >> 11) / 9007199254740992.0;
+}
+static double uni(double a, double b) { return a + (b - a) * urand(); }
+
+static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double nrm(const double a[3]) { return sqrt(dot(a, a)); }
+static double dist(const double a[3], const double b[3])
+{
+  const double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  return nrm(d);
+}
+static void cross(const double a[3], const double b[3], double c[3])
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+static void unit(double a[3])
+{
+  const double l = nrm(a);
+  for (int i = 0; i < 3; i++) a[i] /= l;
+}
+static void set3(double v[3], double x, double y, double z)
+{
+  v[0] = x;
+  v[1] = y;
+  v[2] = z;
+}
+static double deg(double d) { return d * PI / 180.0; }
+
+/* axis a and reference e orthonormalised */
+static void frame(Patch *p, double ax, double ay, double az, double rx, double ry, double rz)
+{
+  set3(p->a, ax, ay, az);
+  unit(p->a);
+  set3(p->e, rx, ry, rz);
+  const double pa = dot(p->e, p->a);
+  for (int i = 0; i < 3; i++) p->e[i] -= pa * p->a[i];
+  unit(p->e);
+}
+
+static Patch make_plane(void)
+{
+  Patch p;
+  memset(&p, 0, sizeof(p));
+  p.type  = PATCH_PLANE;
+  p.sense = 1;
+  set3(p.o, 0.3, -0.2, 0.1);
+  set3(p.e1, 1, 0.4, -0.3);
+  unit(p.e1);
+  set3(p.e2, 0.2, 1, 0.5);
+  const double pr = dot(p.e2, p.e1);
+  for (int i = 0; i < 3; i++) p.e2[i] -= pr * p.e1[i];
+  unit(p.e2);
+  p.u0 = -0.5;
+  p.u1 = 0.7;
+  p.v0 = 0.1;
+  p.v1 = 1.2;
+  return p;
+}
+
+static Patch make_sphere(int sense)
+{
+  Patch p;
+  memset(&p, 0, sizeof(p));
+  p.type  = PATCH_SPHERE;
+  p.sense = sense;
+  set3(p.c, 0.1, 0.2, -0.3);
+  p.R = 1.3;
+  frame(&p, 0.2, 0.3, 1, 1, 0, 0);
+  p.t0 = deg(20);
+  p.t1 = deg(110);
+  p.s0 = deg(-30);
+  p.s1 = deg(80);
+  return p;
+}
+
+static Patch make_cylinder(int sense)
+{
+  Patch p;
+  memset(&p, 0, sizeof(p));
+  p.type  = PATCH_CYLINDER;
+  p.sense = sense;
+  set3(p.c, -0.2, 0.1, 0.3);
+  p.R = 0.8;
+  frame(&p, 0.3, -0.2, 1, 0, 1, 0);
+  p.t0 = deg(10);
+  p.t1 = deg(200);
+  p.s0 = -0.5;
+  p.s1 = 0.9;
+  return p;
+}
+
+static Patch make_torus(int sense)
+{
+  Patch p;
+  memset(&p, 0, sizeof(p));
+  p.type  = PATCH_TORUS;
+  p.sense = sense;
+  set3(p.c, 0.2, -0.1, 0.05);
+  p.R = 1.2;
+  p.r = 0.35;
+  frame(&p, -0.1, 0.2, 1, 1, 0.3, 0);
+  p.t0 = deg(0);
+  p.t1 = deg(120);
+  p.s0 = deg(-60);
+  p.s1 = deg(150);
+  return p;
+}
+
+static void curve(Curve *c, CurveType t, const double a[3], const double b[3], const double cc[3])
+{
+  c->type = t;
+  for (int i = 0; i < 3; i++) {
+    c->a[i] = a[i];
+    c->b[i] = b[i];
+    c->c[i] = cc ? cc[i] : 0.0;
+  }
+}
+
+/* conical Coons patch: two arcs (bottom, top) and two lines */
+static Patch make_coons_cone(void)
+{
+  Patch  p;
+  double a0[3], b0[3], c0[3], a1[3], b1[3], c1[3];
+  memset(&p, 0, sizeof(p));
+  p.type  = PATCH_COONS;
+  p.sense = 1;
+  set3(a0, 1, 0, 0);
+  set3(b0, 0, 1, 0);
+  set3(c0, 0, 0, 0);
+  set3(a1, 1.2, 0, 1);
+  set3(b1, 0, 1.2, 1);
+  set3(c1, 0, 0, 1);
+  curve(&p.C0, CURVE_ARC, a0, b0, c0);
+  curve(&p.C1, CURVE_ARC, a1, b1, c1);
+  curve(&p.D0, CURVE_LINE, a0, a1, NULL);
+  curve(&p.D1, CURVE_LINE, b0, b1, NULL);
+  return p;
+}
+
+/* the octant x, y, z >= 0 of the sphere |x - c| = R as 3 Coons patches of great-circle arcs,
+   split through the centroid G of the spherical triangle and the midpoints of its sides */
+static void octant_coons(const double c[3], double R, Patch q[3])
+{
+  double       N[3], X[3], Y[3], Mzx[3], Mzy[3], Mxy[3], G[3];
+  const double s2 = 1.0 / sqrt(2.0), s3 = 1.0 / sqrt(3.0);
+  for (int i = 0; i < 3; i++) {
+    N[i]   = c[i] + R * (i == 2);
+    X[i]   = c[i] + R * (i == 0);
+    Y[i]   = c[i] + R * (i == 1);
+    Mzx[i] = c[i] + R * s2 * (i != 1);
+    Mzy[i] = c[i] + R * s2 * (i != 0);
+    Mxy[i] = c[i] + R * s2 * (i != 2);
+    G[i]   = c[i] + R * s3;
+  }
+  /* corners (0,0), (1,0), (1,1), (0,1): counterclockwise seen from outside */
+  const double *Q[3][4] = {
+    {N, Mzx, G, Mzy},
+    {X, Mxy, G, Mzx},
+    {Y, Mzy, G, Mxy}
+  };
+  for (int k = 0; k < 3; k++) {
+    memset(&q[k], 0, sizeof(q[k]));
+    q[k].type  = PATCH_COONS;
+    q[k].sense = 1;
+    curve(&q[k].C0, CURVE_ARC, Q[k][0], Q[k][1], c); /* bottom: (0,0) -> (1,0) */
+    curve(&q[k].C1, CURVE_ARC, Q[k][3], Q[k][2], c); /* top:    (0,1) -> (1,1) */
+    curve(&q[k].D0, CURVE_ARC, Q[k][0], Q[k][3], c); /* left:   (0,0) -> (0,1) */
+    curve(&q[k].D1, CURVE_ARC, Q[k][1], Q[k][2], c); /* right:  (1,0) -> (1,1) */
+  }
+}
+
+/* the octant of the unit sphere as one Coons patch whose bottom side is collapsed into the pole:
+   left and right are meridians, top the equator arc */
+static Patch make_coons_collapsed(void)
+{
+  Patch        p;
+  const double c[3] = {0, 0, 0}, N[3] = {0, 0, 1}, X[3] = {1, 0, 0}, Y[3] = {0, 1, 0};
+  memset(&p, 0, sizeof(p));
+  p.type  = PATCH_COONS;
+  p.sense = -1; /* x_xi x x_eta points into the sphere */
+  curve(&p.C0, CURVE_LINE, N, N, NULL);
+  curve(&p.C1, CURVE_ARC, X, Y, c);
+  curve(&p.D0, CURVE_ARC, N, X, c);
+  curve(&p.D1, CURVE_ARC, N, Y, c);
+  return p;
+}
+
+static void tool_init(Tool *t, const char *name, int np, Patch *p)
+{
+  memset(t, 0, sizeof(*t));
+  snprintf(t->name, sizeof(t->name), "%s", name);
+  t->npatch = np;
+  t->patch  = p;
+  for (int i = 0; i < 3; i++) {
+    t->bbox[2 * i]     = -1e300;
+    t->bbox[2 * i + 1] = 1e300;
+  }
+}
+
+/* ------------------------------------------------------------------ brute force */
+
+static double d2at(const Patch *p, double u, double v, const double y[3])
+{
+  double x[3], xu[3], xv[3];
+  PatchEval(p, u, v, x, xu, xv, NULL, NULL, NULL);
+  return (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]);
+}
+
+/* closest distance by a 101 x 101 grid on [0,1]^2, then zooming in (window +-3h, 13 x 13 points,
+   h halved, until h < 1e-10) around each of the 3 best samples with distinct points (a patch with
+   a collapsed side has many samples at one point), and each edge as a 1D problem the same way */
+static double zoom(const Patch *p, const double y[3], double h, double *u, double *v, double best)
+{
+  while (h > 1e-10) {
+    const double u0 = *u, v0 = *v;
+    for (int i = -6; i <= 6; i++)
+      for (int j = -6; j <= 6; j++) {
+        const double uu = fmin(1.0, fmax(0.0, u0 + 0.5 * i * h)), vv = fmin(1.0, fmax(0.0, v0 + 0.5 * j * h));
+        const double d  = d2at(p, uu, vv, y);
+        if (d < best) {
+          best = d;
+          *u   = uu;
+          *v   = vv;
+        }
+      }
+    h *= 0.5;
+  }
+  return best;
+}
+
+static double brute(const Patch *p, const double y[3], double *bu, double *bv)
+{
+  enum { N = 101, K = 3 };
+  static double D[N][N], X[N][N][3];
+  const double  h = 1.0 / (N - 1);
+  double        best = HUGE_VAL, ub = 0, vb = 0;
+  int           ka[K], kb[K], nk = 0;
+  for (int i = 0; i < N; i++)
+    for (int j = 0; j < N; j++) {
+      double xu[3], xv[3];
+      PatchEval(p, i * h, j * h, X[i][j], xu, xv, NULL, NULL, NULL);
+      D[i][j] = dist(X[i][j], y);
+    }
+  while (nk < K) { /* the next best sample with a point distinct from those taken */
+    int    bi = -1, bj = -1;
+    double bd = HUGE_VAL;
+    for (int i = 0; i < N; i++)
+      for (int j = 0; j < N; j++) {
+        int dup = 0;
+        if (D[i][j] >= bd) continue;
+        for (int k = 0; k < nk; k++) dup = dup || (ka[k] == i && kb[k] == j) || dist(X[i][j], X[ka[k]][kb[k]]) < 1e-9;
+        if (!dup) {
+          bd = D[i][j];
+          bi = i;
+          bj = j;
+        }
+      }
+    if (bi < 0) break;
+    ka[nk] = bi;
+    kb[nk] = bj;
+    nk++;
+  }
+  for (int k = 0; k < nk; k++) {
+    double       u = ka[k] * h, v = kb[k] * h;
+    const double d = zoom(p, y, h, &u, &v, D[ka[k]][kb[k]] * D[ka[k]][kb[k]]);
+    if (d < best) {
+      best = d;
+      ub   = u;
+      vb   = v;
+    }
+  }
+  for (int e = 0; e < 4; e++) { /* each edge as a 1D problem: 1001 samples, then zooming */
+    const double fix = e % 2;
+    const int    alongv = e / 2; /* e = 0, 1: xi free on eta = 0, 1; e = 2, 3: eta free on xi = 0, 1 */
+    double       s = 0, hs = 1e-3, bd = HUGE_VAL;
+    for (int k = 0; k <= 1000; k++) {
+      const double d = alongv ? d2at(p, fix, k * 1e-3, y) : d2at(p, k * 1e-3, fix, y);
+      if (d < bd) {
+        bd = d;
+        s  = k * 1e-3;
+      }
+    }
+    while (hs > 1e-13) {
+      const double s0 = s;
+      for (int k = -6; k <= 6; k++) {
+        const double ss = fmin(1.0, fmax(0.0, s0 + 0.5 * k * hs));
+        const double d  = alongv ? d2at(p, fix, ss, y) : d2at(p, ss, fix, y);
+        if (d < bd) {
+          bd = d;
+          s  = ss;
+        }
+      }
+      hs *= 0.5;
+    }
+    if (bd < best) {
+      best = bd;
+      ub   = alongv ? fix : s;
+      vb   = alongv ? s : fix;
+    }
+  }
+  if (bu) *bu = ub;
+  if (bv) *bv = vb;
+  return sqrt(best);
+}
+
+static double brute_tool(const Tool *t, const double y[3], int *kb)
+{
+  double best = HUGE_VAL;
+  for (int k = 0; k < t->npatch; k++) {
+    const double d = brute(&t->patch[k], y, NULL, NULL);
+    if (d < best) {
+      best = d;
+      if (kb) *kb = k;
+    }
+  }
+  return best;
+}
+
+/* ------------------------------------------------------------------ 1. derivatives */
+
+static void test_derivatives(const char *name, const Patch *p)
+{
+  const double h = 1e-5;
+  double       e1 = 0, e2 = 0;
+  for (int k = 0; k < 20; k++) {
+    const double u = uni(-0.2, 1.2), v = uni(-0.2, 1.2);
+    double       x[3], xu[3], xv[3], xuu[3], xuv[3], xvv[3];
+    double       xp[3], xm[3], up[3], um[3], vp[3], vm[3];
+    double       sc1, sc2;
+    PatchEval(p, u, v, x, xu, xv, xuu, xuv, xvv);
+    sc1 = fmax(nrm(xu), nrm(xv));
+    sc2 = sc1;
+    /* d/dxi */
+    PatchEval(p, u + h, v, xp, up, vp, NULL, NULL, NULL);
+    PatchEval(p, u - h, v, xm, um, vm, NULL, NULL, NULL);
+    for (int i = 0; i < 3; i++) {
+      e1 = fmax(e1, fabs((xp[i] - xm[i]) / (2 * h) - xu[i]) / sc1);
+      e2 = fmax(e2, fabs((up[i] - um[i]) / (2 * h) - xuu[i]) / fmax(sc2, nrm(xuu)));
+      e2 = fmax(e2, fabs((vp[i] - vm[i]) / (2 * h) - xuv[i]) / fmax(sc2, nrm(xuv)));
+    }
+    /* d/deta */
+    PatchEval(p, u, v + h, xp, up, vp, NULL, NULL, NULL);
+    PatchEval(p, u, v - h, xm, um, vm, NULL, NULL, NULL);
+    for (int i = 0; i < 3; i++) {
+      e1 = fmax(e1, fabs((xp[i] - xm[i]) / (2 * h) - xv[i]) / sc1);
+      e2 = fmax(e2, fabs((up[i] - um[i]) / (2 * h) - xuv[i]) / fmax(sc2, nrm(xuv)));
+      e2 = fmax(e2, fabs((vp[i] - vm[i]) / (2 * h) - xvv[i]) / fmax(sc2, nrm(xvv)));
+    }
+  }
+  TU_CHECK(e1 < 1e-6, "%s: first derivatives vs central differences (20 points in [-0.2,1.2]^2): max rel. error %.2e", name, e1);
+  TU_CHECK(e2 < 1e-6, "%s: second derivatives vs central differences: max rel. error %.2e", name, e2);
+}
+
+/* ------------------------------------------------------------------ 2. normals */
+
+static void test_normals(const char *name, const Patch *p)
+{
+  double eu = 0, ea = 0, ec = 0;
+  for (int k = 0; k < 50; k++) {
+    const double u = urand(), v = urand();
+    double       n[3], x[3], xu[3], xv[3], N[3], an[3] = {0, 0, 0}, J;
+    J = PatchNormal(p, u, v, n);
+    PatchEval(p, u, v, x, xu, xv, NULL, NULL, NULL);
+    cross(xu, xv, N);
+    eu = fmax(eu, fabs(nrm(n) - 1.0));
+    ec = fmax(ec, fabs(J - nrm(N)) / nrm(N));
+    for (int i = 0; i < 3; i++) ec = fmax(ec, fabs(n[i] - p->sense * N[i] / nrm(N)));
+    if (p->type == PATCH_SPHERE)
+      for (int i = 0; i < 3; i++) an[i] = (x[i] - p->c[i]) / p->R;
+    else if (p->type == PATCH_CYLINDER) {
+      double d[3];
+      for (int i = 0; i < 3; i++) d[i] = x[i] - p->c[i];
+      const double h = dot(d, p->a);
+      for (int i = 0; i < 3; i++) an[i] = (d[i] - h * p->a[i]) / p->R;
+    } else if (p->type == PATCH_TORUS) {
+      double d[3], w[3];
+      for (int i = 0; i < 3; i++) d[i] = x[i] - p->c[i];
+      const double h = dot(d, p->a);
+      for (int i = 0; i < 3; i++) w[i] = d[i] - h * p->a[i];
+      unit(w);
+      for (int i = 0; i < 3; i++) an[i] = (d[i] - p->R * w[i]) / p->r;
+    }
+    if (p->type == PATCH_SPHERE || p->type == PATCH_CYLINDER || p->type == PATCH_TORUS)
+      for (int i = 0; i < 3; i++) ea = fmax(ea, fabs(n[i] - p->sense * an[i]));
+  }
+  TU_CHECK(eu < 1e-14, "%s: normal has unit length: max | |n| - 1 | = %.2e", name, eu);
+  TU_CHECK(ec < 1e-12, "%s: normal = sense (x_xi x x_eta)/|x_xi x x_eta| and the returned Jacobian |x_xi x x_eta|: max error %.2e", name, ec);
+  if (p->type == PATCH_SPHERE || p->type == PATCH_CYLINDER || p->type == PATCH_TORUS) TU_CHECK(ea < 1e-14, "%s: normal = analytic sense (x - centre)/radius: max error %.2e", name, ea);
+}
+
+/* ------------------------------------------------------------------ 3. Coons */
+
+static void test_coons_shapes(void)
+{
+  /* planar convex quad with straight sides: the Coons patch is the bilinear patch */
+  double o[3], e1[3], e2[3], P[4][3];
+  set3(o, 0.2, -0.4, 1.0);
+  set3(e1, 1, 0.5, 0.2);
+  unit(e1);
+  set3(e2, -0.3, 1, 0.4);
+  {
+    const double pr = dot(e1, e2);
+    for (int i = 0; i < 3; i++) e2[i] -= pr * e1[i];
+  }
+  unit(e2);
+  const double ab[4][2] = {
+    {0.0, 0.0},
+    {2.0, 0.3},
+    {-0.2, 1.5},
+    {1.7, 1.9}
+  }; /* P00, P10, P01, P11 */
+  for (int k = 0; k < 4; k++)
+    for (int i = 0; i < 3; i++) P[k][i] = o[i] + ab[k][0] * e1[i] + ab[k][1] * e2[i];
+  Patch q;
+  memset(&q, 0, sizeof(q));
+  q.type  = PATCH_COONS;
+  q.sense = 1;
+  curve(&q.C0, CURVE_LINE, P[0], P[1], NULL);
+  curve(&q.C1, CURVE_LINE, P[2], P[3], NULL);
+  curve(&q.D0, CURVE_LINE, P[0], P[2], NULL);
+  curve(&q.D1, CURVE_LINE, P[1], P[3], NULL);
+  double ex = 0, ed = 0;
+  for (int k = 0; k < 100; k++) {
+    const double u = uni(-0.1, 1.1), v = uni(-0.1, 1.1);
+    double       x[3], xu[3], xv[3], xuu[3], xuv[3], xvv[3];
+    PatchEval(&q, u, v, x, xu, xv, xuu, xuv, xvv);
+    for (int i = 0; i < 3; i++) {
+      const double b   = (1 - u) * (1 - v) * P[0][i] + u * (1 - v) * P[1][i] + (1 - u) * v * P[2][i] + u * v * P[3][i];
+      const double bu  = (1 - v) * (P[1][i] - P[0][i]) + v * (P[3][i] - P[2][i]);
+      const double bv  = (1 - u) * (P[2][i] - P[0][i]) + u * (P[3][i] - P[1][i]);
+      const double buv = P[0][i] - P[1][i] - P[2][i] + P[3][i];
+      ex               = fmax(ex, fabs(x[i] - b));
+      ed               = fmax(ed, fmax(fabs(xu[i] - bu), fabs(xv[i] - bv)));
+      ed               = fmax(ed, fmax(fmax(fabs(xuu[i]), fabs(xvv[i])), fabs(xuv[i] - buv)));
+    }
+  }
+  TU_CHECK(ex < 1e-14 && ed < 1e-14, "coons from 4 straight sides of a planar quad = bilinear patch: max point error %.2e, max derivative error %.2e", ex, ed);
+
+  /* octant of the unit sphere from 3 Coons patches of great-circle arcs */
+  Patch        oc[3];
+  const double c[3] = {0.3, -0.2, 0.5};
+  octant_coons(c, 1.0, oc);
+  double eb = 0, ei = 0, en = 0;
+  for (int k = 0; k < 3; k++) {
+    for (int j = 0; j <= 200; j++) {
+      const double s     = j / 200.0;
+      const double uv[4][2] = {
+        {s,   0  },
+        {s,   1  },
+        {0,   s  },
+        {1,   s  }
+      };
+      for (int e = 0; e < 4; e++) {
+        double x[3], xu[3], xv[3];
+        PatchEval(&oc[k], uv[e][0], uv[e][1], x, xu, xv, NULL, NULL, NULL);
+        eb = fmax(eb, fabs(dist(x, c) - 1.0));
+      }
+    }
+    for (int a = 0; a <= 60; a++)
+      for (int b = 0; b <= 60; b++) {
+        double x[3], n[3], xu[3], xv[3], r[3];
+        PatchEval(&oc[k], a / 60.0, b / 60.0, x, xu, xv, NULL, NULL, NULL);
+        ei = fmax(ei, fabs(dist(x, c) - 1.0));
+        PatchNormal(&oc[k], a / 60.0, b / 60.0, n);
+        for (int i = 0; i < 3; i++) r[i] = x[i] - c[i];
+        unit(r);
+        en = fmax(en, acos(fmin(1.0, dot(n, r))) * 180 / PI);
+      }
+  }
+  TU_CHECK(eb < 1e-14, "coons octant of a unit sphere (3 patches of great-circle arcs): boundary on the sphere, max | |x - c| - R | = %.2e", eb);
+  TU_CHECK(ei < 0.02, "coons octant: interior close to the sphere, max | |x - c| - R | / R = %.4e", ei);
+  TU_CHECK(en < 5.0, "coons octant: normals (sense 1) point outwards, max angle to the radial direction %.3f degrees", en);
+}
+
+/* ------------------------------------------------------------------ 4. projection vs brute force */
+
+typedef struct {
+  double maxexcess;  /* max (projected distance - brute force) */
+  double maxdeficit; /* max (brute force - projected distance) */
+  double maxorth;    /* max tangential residual / L for interior projections */
+  double maxcons;    /* consistency: x = PatchEval + shift, gap = (y - x).n, |gap| = |y - x| */
+  int    n, fails, interior;
+} ProjStats;
+
+static void check_point(const Tool *t, const double shift[3], const double y[3], double L, ProjStats *st)
+{
+  Projection pr;
+  double     yr[3];
+  st->n++;
+  if (ToolProject(t, shift, y, PETSC_INFINITY, &pr)) {
+    st->fails++;
+    return;
+  }
+  for (int i = 0; i < 3; i++) yr[i] = y[i] - shift[i];
+  const double bf = brute_tool(t, yr, NULL), dp = dist(y, pr.x);
+  st->maxexcess  = fmax(st->maxexcess, dp - bf);
+  if (getenv("TOOL_DEBUG") && dp - bf > 1e-9) { /* the points a failing check is about */
+    double bu, bv;
+    brute(&t->patch[0], yr, &bu, &bv);
+    printf("# DEBUG y %.17g %.17g %.17g: proj patch %d (%.17g, %.17g) int %d d %.17g; brute (%.17g %.17g) %.17g\n", yr[0], yr[1], yr[2], pr.patch, pr.xi, pr.eta, pr.interior, dp, bu, bv, bf);
+  }
+  st->maxdeficit = fmax(st->maxdeficit, bf - dp);
+  {
+    double x[3], xu[3], xv[3], r[3], n[3];
+    PatchEval(&t->patch[pr.patch], pr.xi, pr.eta, x, xu, xv, NULL, NULL, NULL);
+    PatchNormal(&t->patch[pr.patch], pr.xi, pr.eta, n);
+    for (int i = 0; i < 3; i++) {
+      st->maxcons = fmax(st->maxcons, fabs(x[i] + shift[i] - pr.x[i]) / L);
+      st->maxcons = fmax(st->maxcons, fabs(n[i] - pr.n[i]));
+      r[i]        = y[i] - pr.x[i];
+    }
+    st->maxcons = fmax(st->maxcons, fabs(pr.gap - dot(r, pr.n)) / L);
+    if (pr.interior) {
+      st->maxcons = fmax(st->maxcons, fabs(fabs(pr.gap) - dp) / L);
+      st->interior++;
+      if (nrm(xu) > 0) st->maxorth = fmax(st->maxorth, fabs(dot(r, xu)) / nrm(xu) / L);
+      if (nrm(xv) > 0) st->maxorth = fmax(st->maxorth, fabs(dot(r, xv)) / nrm(xv) / L);
+    }
+  }
+}
+
+static void report(const char *name, const ProjStats *st, double L)
+{
+  TU_CHECK(st->fails == 0 && st->maxexcess <= 1e-9 * fmax(1.0, L), "%s: %d points (%d interior): projected distance - brute force <= %.2e (brute force - projected <= %.2e)", name, st->n, st->interior, st->maxexcess, st->maxdeficit);
+  TU_CHECK(st->maxorth <= 1e-10, "%s: interior projections orthogonal: max |(y - x).x_i|/|x_i| / L = %.2e", name, st->maxorth);
+  TU_CHECK(st->maxcons <= 1e-12, "%s: x = x(xi,eta) + shift, n = PatchNormal, gap = (y - x).n = +-|y - x|: max error %.2e", name, st->maxcons);
+}
+
+/* points about one patch: near the surface on both sides (parameters beyond the range too), near
+   edges and corners, on the surface, far away */
+static void test_projection(const char *name, const Patch *p, double thick, double L)
+{
+  Tool         t;
+  Patch        q      = *p;
+  const double sh[3]  = {0.3, -0.1, 0.2};
+  ProjStats    st     = {0, 0, 0, 0, 0, 0, 0};
+  double       cen[3] = {0, 0, 0}, xc[3], xu[3], xv[3];
+  tool_init(&t, name, 1, &q);
+  PatchEval(p, 0.5, 0.5, xc, xu, xv, NULL, NULL, NULL);
+  for (int i = 0; i < 3; i++) cen[i] = xc[i];
+  for (int k = 0; k < 240; k++) {
+    const int cat = k % 6;
+    double    u, v, tt, x[3], n[3], y[3];
+    switch (cat) {
+    case 0:
+    case 1:
+      u  = uni(-0.3, 1.3);
+      v  = uni(-0.3, 1.3);
+      tt = uni(-thick, thick);
+      break;
+    case 2: /* near an edge */
+      if (urand() < 0.5) {
+        u = (urand() < 0.5 ? 0 : 1) + uni(-0.03, 0.03);
+        v = uni(-0.1, 1.1);
+      } else {
+        v = (urand() < 0.5 ? 0 : 1) + uni(-0.03, 0.03);
+        u = uni(-0.1, 1.1);
+      }
+      tt = uni(-thick, thick);
+      break;
+    case 3: /* near a corner */
+      u  = (urand() < 0.5 ? 0 : 1) + uni(-0.05, 0.05);
+      v  = (urand() < 0.5 ? 0 : 1) + uni(-0.05, 0.05);
+      tt = uni(-thick, thick);
+      break;
+    case 4: /* on the surface, edges included */
+      u  = k % 24 == 4 ? 0.0 : urand();
+      v  = k % 36 == 10 ? 1.0 : urand();
+      tt = 0.0;
+      break;
+    default: /* far away */
+      u = v = tt = 0;
+      break;
+    }
+    if (cat == 5)
+      for (int i = 0; i < 3; i++) y[i] = cen[i] + uni(-5, 5) * L;
+    else {
+      PatchEval(p, u, v, x, xu, xv, NULL, NULL, NULL);
+      PatchNormal(p, u, v, n);
+      for (int i = 0; i < 3; i++) y[i] = x[i] + tt * n[i];
+    }
+    for (int i = 0; i < 3; i++) y[i] += sh[i];
+    check_point(&t, sh, y, L, &st);
+  }
+  report(name, &st, L);
+}
+
+/* ------------------------------------------------------------------ 5. the sphere's pole */
+
+static void test_pole(void)
+{
+  Patch p;
+  Tool  t;
+  memset(&p, 0, sizeof(p));
+  p.type  = PATCH_SPHERE;
+  p.sense = 1;
+  set3(p.c, 0, 0, 0);
+  p.R = 1.0;
+  frame(&p, 0, 0, 1, 1, 0, 0);
+  const double ranges[3][4] = {
+    {0,         deg(90),  0,        deg(90) }, /* quarter hemisphere, pole at a corner edge (th = 0) */
+    {0,         deg(40),  0,        2 * PI  }, /* full-azimuth cap                                   */
+    {deg(120), PI,        deg(-45), deg(200)}  /* around the south pole (th = 180)                    */
+  };
+  const char *names[3] = {"quarter hemisphere", "full cap", "south-pole patch"};
+  for (int r = 0; r < 3; r++) {
+    p.t0 = ranges[r][0];
+    p.t1 = ranges[r][1];
+    p.s0 = ranges[r][2];
+    p.s1 = ranges[r][3];
+    tool_init(&t, "pole", 1, &p);
+    const double sh[3] = {0, 0, 0}, sgn = r == 2 ? -1.0 : 1.0;
+    double       eax = 0, enx = 0, egp = 0, eb = 0, eo = 0, eg = 0;
+    int          nint = 0, fails = 0, npt = 0;
+    /* on the axis: x = pole, n = +-axis, gap = |z| - 1 */
+    const double zs[] = {3.0, 1.0 + 1e-12, 1.0, 1.0 - 1e-12, 0.999, 0.5, 1e-3};
+    for (int k = 0; k < (int)(sizeof(zs) / sizeof(zs[0])); k++) {
+      double     y[3] = {0, 0, sgn * zs[k]}, pole[3] = {0, 0, sgn};
+      Projection pr;
+      npt++;
+      if (ToolProject(&t, sh, y, PETSC_INFINITY, &pr)) {
+        fails++;
+        continue;
+      }
+      eax = fmax(eax, dist(pr.x, pole));
+      enx = fmax(enx, fabs(pr.n[2] - sgn) + fabs(pr.n[0]) + fabs(pr.n[1]));
+      egp = fmax(egp, fabs(pr.gap - (zs[k] - 1.0)));
+      nint += pr.interior;
+    }
+    /* off the axis by 1e-12 .. 1e-2, in and out of the azimuth range */
+    const double offs[] = {1e-12, 1e-9, 1e-6, 1e-3, 1e-2}, phs[] = {30, 100, 180, 225, 300}, zz[] = {1.5, 1.0, 0.9};
+    for (int a = 0; a < 5; a++)
+      for (int b = 0; b < 5; b++)
+        for (int c = 0; c < 3; c++) {
+          double     y[3] = {offs[a] * cos(deg(phs[b])), offs[a] * sin(deg(phs[b])), sgn * zz[c]}, r3[3], x[3], xu[3], xv[3];
+          Projection pr;
+          npt++;
+          if (ToolProject(&t, sh, y, PETSC_INFINITY, &pr)) {
+            fails++;
+            continue;
+          }
+          const double bf = brute(&p, y, NULL, NULL);
+          eb              = fmax(eb, dist(y, pr.x) - bf);
+          PatchEval(&p, pr.xi, pr.eta, x, xu, xv, NULL, NULL, NULL);
+          for (int i = 0; i < 3; i++) r3[i] = y[i] - pr.x[i];
+          if (pr.interior) {
+            if (nrm(xu) > 0) eo = fmax(eo, fabs(dot(r3, xu)) / nrm(xu));
+            if (nrm(xv) > 1e-300) eo = fmax(eo, fabs(dot(r3, xv)) / nrm(xv));
+          }
+          if (pr.interior) eg = fmax(eg, fabs(fabs(pr.gap) - dist(y, pr.x)));
+        }
+    TU_CHECK(fails == 0 && eax < 1e-15 && enx < 1e-12 && egp < 1e-15 && nint == 7, "sphere pole, %s: 7 points on the axis project on the pole (max distance %.1e), n = axis (error %.1e), gap = |z| - R (error %.1e), %d interior", names[r], eax, enx, egp, nint);
+    TU_CHECK(fails == 0 && eb <= 1e-9 && eo <= 1e-10 && eg <= 1e-10, "sphere pole, %s: %d points near the axis (offsets 1e-12..1e-2, azimuths in and out of range): projected - brute force <= %.2e, orthogonality residual %.1e, | |gap| - |y - x| | %.1e (interior)", names[r], npt - 7, eb, eo, eg);
+  }
+}
+
+/* ------------------------------------------------------------------ 6. multi-patch tools */
+
+static void test_multipatch(void)
+{
+  const double c[3] = {0, 0, 0}, sh[3] = {0.0, 0.0, 0.7};
+  Patch        P[4];
+  Tool         t;
+  Patch        plane;
+  memset(&plane, 0, sizeof(plane));
+  plane.type  = PATCH_PLANE;
+  plane.sense = 1;
+  set3(plane.o, 0, 0, 0);
+  set3(plane.e1, 1, 0, 0);
+  set3(plane.e2, 0, 1, 0);
+  plane.u0 = 0;
+  plane.u1 = 1.5;
+  plane.v0 = 0;
+  plane.v1 = 1.5;
+
+  /* (a) the quarter hemisphere from two sphere patches split at ph = 45 degrees + the equator plane */
+  for (int k = 0; k < 2; k++) {
+    memset(&P[k], 0, sizeof(P[k]));
+    P[k].type  = PATCH_SPHERE;
+    P[k].sense = 1;
+    P[k].R     = 1.0;
+    frame(&P[k], 0, 0, 1, 1, 0, 0);
+    P[k].t0 = 0;
+    P[k].t1 = deg(90);
+    P[k].s0 = deg(45 * k);
+    P[k].s1 = deg(45 * (k + 1));
+  }
+  P[2] = plane;
+  tool_init(&t, "split", 3, P);
+  {
+    ProjStats st = {0, 0, 0, 0, 0, 0, 0};
+    int       moved = 0, nmove = 0, seam = 0, nseam = 0;
+    for (int k = 0; k < 240; k++) {
+      double th = deg(uni(0, 80)), ph = deg(uni(0, 90)), tt = uni(-0.15, 0.2), y[3];
+      if (k % 4 == 0) ph = deg(45);                  /* exactly on the seam */
+      if (k % 4 == 1) ph = deg(45 + uni(0.01, 15));  /* beyond patch 0's edge */
+      if (k % 8 == 0) tt = 0.0;                      /* on the surface */
+      for (int i = 0; i < 3; i++) y[i] = sh[i] + (1 + tt) * (i == 2 ? cos(th) : sin(th) * (i == 0 ? cos(ph) : sin(ph)));
+      check_point(&t, sh, y, 1.0, &st);
+      Projection pr;
+      ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+      if (k % 4 == 1) {
+        nmove++;
+        moved += pr.patch == 1 && pr.interior;
+      }
+      if (k % 4 == 0) {
+        nseam++;
+        seam += (pr.patch == 0 || pr.patch == 1) && pr.interior && fabs(pr.gap - tt) < 1e-13;
+      }
+    }
+    report("two sphere patches + plane", &st, 1.0);
+    TU_CHECK(moved == nmove, "two sphere patches: %d of %d points beyond patch 0's edge (ph = 45..60 deg) project inside patch 1", moved, nmove);
+    TU_CHECK(seam == nseam, "two sphere patches: %d of %d points on the seam ph = 45 deg project as interior with gap = radial offset", seam, nseam);
+  }
+
+  /* selection: beside an open edge of the tool (the symmetry plane ph = 0 of the octant) a point
+     keeps the near solution held on the edge rather than a far interior one (a plane under the
+     whole hemisphere) */
+  {
+    Patch Q[2] = {P[0], plane};
+    Tool  t2;
+    Q[1].u0 = Q[1].v0 = -1.5;
+    tool_init(&t2, "open", 2, Q);
+    const double th = deg(30), ph = deg(-5), y[3] = {1.2 * sin(th) * cos(ph), 1.2 * sin(th) * sin(ph), 1.2 * cos(th)};
+    Projection   pr;
+    const int    r = ToolProject(&t2, c, y, PETSC_INFINITY, &pr);
+    TU_CHECK(r == 0 && pr.patch == 0 && !pr.interior && fabs(dist(y, pr.x) - brute_tool(&t2, y, NULL)) < 1e-12, "selection: a point 0.2 outside the sphere, 5 deg beyond its open edge: sphere patch %d held on the edge (interior %d, distance %.6f), not the plane 1.04 below", pr.patch, pr.interior, dist(y, pr.x));
+  }
+
+  /* (b) the quarter hemisphere from 3 Coons patches + the equator plane */
+  octant_coons(c, 1.0, P);
+  P[3] = plane;
+  tool_init(&t, "coons3", 4, P);
+  {
+    ProjStats st = {0, 0, 0, 0, 0, 0, 0};
+    int       nseam = 0, seam = 0;
+    for (int k = 0; k < 240; k++) {
+      double th = deg(uni(0, 80)), ph = deg(uni(0, 90)), tt = uni(-0.1, 0.2), y[3];
+      if (k % 8 == 0) tt = 0.0;
+      for (int i = 0; i < 3; i++) y[i] = sh[i] + (1 + tt) * (i == 2 ? cos(th) : sin(th) * (i == 0 ? cos(ph) : sin(ph)));
+      if (k % 4 == 1) { /* on a seam of the Coons patches: patch k%3's right or top edge (shared) */
+        double x[3], xu[3], xv[3], n[3];
+        const int pk = (k / 4) % 3;
+        const double s = urand();
+        if ((k / 12) % 2) PatchEval(&P[pk], 1.0, s, x, xu, xv, NULL, NULL, NULL);
+        else PatchEval(&P[pk], s, 1.0, x, xu, xv, NULL, NULL, NULL);
+        PatchNormal(&P[pk], (k / 12) % 2 ? 1.0 : s, (k / 12) % 2 ? s : 1.0, n);
+        for (int i = 0; i < 3; i++) y[i] = sh[i] + x[i] + tt * n[i];
+        Projection pr;
+        nseam++;
+        if (!ToolProject(&t, sh, y, PETSC_INFINITY, &pr) && tt == 0.0) seam += dist(pr.x, y) < 1e-12;
+        else if (tt != 0.0) seam++;
+      }
+      check_point(&t, sh, y, 1.0, &st);
+    }
+    report("3 coons patches + plane", &st, 1.0);
+    TU_CHECK(seam == nseam, "3 coons patches: %d of %d points on or off the seams handled (points on a seam project on themselves)", seam, nseam);
+  }
+}
+
+/* ------------------------------------------------------------------ 7. normal derivative */
+
+static void test_normal_derivative(const char *name, const Patch *p, double thick, int edges)
+{
+  Tool         t;
+  Patch        q     = *p;
+  const double sh[3] = {-0.1, 0.25, 0.4}, h = 1e-6;
+  double       emax  = 0.0;
+  int          bad = 0, nint = 0, nedge = 0;
+  tool_init(&t, name, 1, &q);
+  for (int k = 0; k < 40; k++) {
+    double     u = uni(0.15, 0.85), v = uni(0.15, 0.85), x[3], xu[3], xv[3], n[3], y[3], dn[9], fd[9];
+    Projection pr, pp, pm;
+    if (edges && k % 2) { /* beyond an edge: the projection is held on it */
+      if (k % 4 == 1) u = uni(-0.3, -0.1);
+      else v = uni(1.1, 1.3);
+    }
+    PatchEval(p, u, v, x, xu, xv, NULL, NULL, NULL);
+    PatchNormal(p, u, v, n);
+    const double tt = (k % 2 ? 1 : -1) * uni(0.2, 1.0) * thick;
+    for (int i = 0; i < 3; i++) y[i] = x[i] + tt * n[i] + sh[i];
+    if (ToolProject(&t, sh, y, PETSC_INFINITY, &pr)) {
+      bad++;
+      continue;
+    }
+    nint += pr.interior;
+    nedge += !pr.interior;
+    if (PatchNormalDerivative(&q, sh, y, &pr, dn)) {
+      bad++;
+      continue;
+    }
+    for (int j = 0; j < 3; j++) {
+      double yp[3] = {y[0], y[1], y[2]}, ym[3] = {y[0], y[1], y[2]};
+      yp[j] += h;
+      ym[j] -= h;
+      ToolProject(&t, sh, yp, PETSC_INFINITY, &pp);
+      ToolProject(&t, sh, ym, PETSC_INFINITY, &pm);
+      for (int i = 0; i < 3; i++) fd[3 * i + j] = (pp.n[i] - pm.n[i]) / (2 * h);
+    }
+    double num = 0, den = 0;
+    for (int i = 0; i < 9; i++) {
+      num += (fd[i] - dn[i]) * (fd[i] - dn[i]);
+      den += dn[i] * dn[i];
+    }
+    emax = fmax(emax, p->type == PATCH_PLANE ? sqrt(num) : sqrt(num / den));
+  }
+  if (p->type == PATCH_PLANE) TU_CHECK(bad == 0 && emax < 1e-9, "%s: dn/dy = 0 and finite differences of the projected normal agree: max |FD| = %.2e", name, emax);
+  else TU_CHECK(bad == 0 && emax < 1e-6, "%s: dn/dy vs central differences of the projected normal (%d interior, %d held on an edge): max rel. error %.2e", name, nint, nedge, emax);
+}
+
+/* ------------------------------------------------------------------ 8. options */
+
+static char errmsg[4096];
+
+static PetscErrorCode Capture(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  if (p == PETSC_ERROR_INITIAL) snprintf(errmsg, sizeof(errmsg), "%s", mess ? mess : "");
+  return n;
+}
+
+static const char *good_options = "-tool_names punch,die,roll,quad "
+                                  "-tool_punch_motion 0,0,30 "
+                                  "-tool_punch_patches 1 "
+                                  "-tool_punch_patch0_type sphere "
+                                  "-tool_punch_patch0_center 0,0,-50.8 "
+                                  "-tool_punch_patch0_radius 50.8 "
+                                  "-tool_punch_patch0_axis 0,0,2 "
+                                  "-tool_punch_patch0_ref 1,0,1 "
+                                  "-tool_punch_patch0_range 0,90,0,90 "
+                                  "-tool_die_patches 2 "
+                                  "-tool_die_patch0_type torus "
+                                  "-tool_die_patch0_sense -1 "
+                                  "-tool_die_patch0_center 0,0,7.35 "
+                                  "-tool_die_patch0_axis 0,0,1 "
+                                  "-tool_die_patch0_ref 1,0,0 "
+                                  "-tool_die_patch0_major 65.53 "
+                                  "-tool_die_patch0_minor 6.35 "
+                                  "-tool_die_patch0_range 0,90,180,270 "
+                                  "-tool_die_patch1_type plane "
+                                  "-tool_die_patch1_origin 0,0,1 "
+                                  "-tool_die_patch1_e1 2,0,0 "
+                                  "-tool_die_patch1_e2 1,1,0 "
+                                  "-tool_die_patch1_range 65.53,100,0,100 "
+                                  "-tool_roll_patches 1 "
+                                  "-tool_roll_patch0_type cylinder "
+                                  "-tool_roll_patch0_center 0,0,10 "
+                                  "-tool_roll_patch0_axis 0,1,0 "
+                                  "-tool_roll_patch0_ref 0,0,-1 "
+                                  "-tool_roll_patch0_radius 5 "
+                                  "-tool_roll_patch0_range -90,90,-1,21 "
+                                  "-tool_quad_patches 1 "
+                                  "-tool_quad_patch0_type coons "
+                                  "-tool_quad_patch0_bottom_type arc "
+                                  "-tool_quad_patch0_bottom_points 1,0,0,0,1,0,0,0,0 "
+                                  "-tool_quad_patch0_top_type arc "
+                                  "-tool_quad_patch0_top_points 1.2,0,1,0,1.2,1,0,0,1 "
+                                  "-tool_quad_patch0_left_type line "
+                                  "-tool_quad_patch0_left_points 1,0,0,1.2,0,1 "
+                                  "-tool_quad_patch0_right_type line "
+                                  "-tool_quad_patch0_right_points 0,1,0,0,1.2,1";
+
+static PetscErrorCode test_options(void)
+{
+  PetscInt n;
+  Tool    *T;
+  double   e = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, good_options));
+  PetscCall(ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T));
+  TU_CHECK(n == 4 && !strcmp(T[0].name, "punch") && !strcmp(T[3].name, "quad") && T[0].npatch == 1 && T[1].npatch == 2, "options: %d tools (punch, die, roll, quad), patches %d %d %d %d", (int)n, T[0].npatch, T[1].npatch, T[2].npatch, T[3].npatch);
+  {
+    const Patch *s = &T[0].patch[0];
+    e              = fabs(s->R - 50.8) + fabs(s->c[2] + 50.8) + fabs(s->a[2] - 1) + fabs(s->e[0] - 1) + fabs(s->e[2]) + fabs(s->t1 - PI / 2) + fabs(s->s1 - PI / 2) + fabs(T[0].motion[2] - 30);
+    TU_CHECK(s->type == PATCH_SPHERE && s->sense == 1 && e < 1e-14, "options: sphere punch (axis 0,0,2 normalised, ref 1,0,1 orthonormalised, degrees to radians, motion): error %.1e", e);
+    double sh[3];
+    ToolShift(&T[0], 0.5, sh);
+    TU_CHECK(sh[0] == 0 && sh[1] == 0 && sh[2] == 15, "ToolShift: lambda 0.5 of motion 0,0,30 = %g,%g,%g", sh[0], sh[1], sh[2]);
+  }
+  {
+    const Patch *tr = &T[1].patch[0], *pl = &T[1].patch[1];
+    e = fabs(tr->R - 65.53) + fabs(tr->r - 6.35) + fabs(tr->s0 - PI) + fabs(tr->s1 - 1.5 * PI) + fabs(pl->e1[0] - 1) + fabs(pl->e2[1] - 1) + fabs(pl->e2[0]) + fabs(pl->u0 - 65.53) + fabs(pl->v1 - 100);
+    TU_CHECK(tr->type == PATCH_TORUS && tr->sense == -1 && pl->type == PATCH_PLANE && e < 1e-13, "options: die torus (sense -1) and plane (e2 orthonormalised against e1): error %.1e", e);
+  }
+  {
+    const Patch *cy = &T[2].patch[0], *co = &T[3].patch[0];
+    e = fabs(cy->R - 5) + fabs(cy->a[1] - 1) + fabs(cy->e[2] + 1) + fabs(cy->t0 + PI / 2) + fabs(cy->s1 - 21) + fabs(co->C0.c[2]) + fabs(co->C1.a[0] - 1.2) + fabs(co->D1.b[2] - 1);
+    TU_CHECK(cy->type == PATCH_CYLINDER && co->type == PATCH_COONS && co->C0.type == CURVE_ARC && co->D0.type == CURVE_LINE && e < 1e-14, "options: cylinder and coons data: error %.1e", e);
+  }
+  /* bounding boxes contain every sampled point and are tight (margin below 1 % of the size) */
+  for (PetscInt k = 0; k < n; k++) {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, out = 0, marg = 0, size = 0;
+    for (int j = 0; j < T[k].npatch; j++)
+      for (int a = 0; a <= 200; a++)
+        for (int b = 0; b <= 200; b++) {
+          double x[3], xu[3], xv[3];
+          PatchEval(&T[k].patch[j], a / 200.0, b / 200.0, x, xu, xv, NULL, NULL, NULL);
+          for (int i = 0; i < 3; i++) {
+            lo[i] = fmin(lo[i], x[i]);
+            hi[i] = fmax(hi[i], x[i]);
+          }
+        }
+    for (int i = 0; i < 3; i++) {
+      out  = fmax(out, fmax(T[k].bbox[2 * i] - lo[i], hi[i] - T[k].bbox[2 * i + 1]));
+      marg = fmax(marg, fmax(lo[i] - T[k].bbox[2 * i], T[k].bbox[2 * i + 1] - hi[i]));
+      size = fmax(size, hi[i] - lo[i]);
+    }
+    TU_CHECK(out <= 0 && marg < 0.01 * size, "options: tool %s bbox [%g,%g]x[%g,%g]x[%g,%g] contains the samples (excess %.1e) with margin %.2e (size %g)", T[k].name, T[k].bbox[0], T[k].bbox[1], T[k].bbox[2], T[k].bbox[3], T[k].bbox[4], T[k].bbox[5], out, marg, size);
+  }
+  /* the punch built from options projects like the analytic sphere; maxdist skips far points */
+  {
+    const double sh[3] = {0, 0, 10}, y[3] = {3, 4, 12}, yf[3] = {300, 0, 0};
+    Projection   pr;
+    double       d[3] = {y[0], y[1], y[2] + 50.8 - 10};
+    const int    r    = ToolProject(&T[0], sh, y, PETSC_INFINITY, &pr);
+    TU_CHECK(r == 0 && pr.interior && fabs(pr.gap - (nrm(d) - 50.8)) < 1e-12, "options: punch at shift 10: gap %.15g = |y - c| - R", pr.gap);
+    const int r1 = ToolProject(&T[0], sh, yf, 5.0, &pr), r2 = ToolProject(&T[0], sh, y, 5.0, &pr);
+    TU_CHECK(r1 == 1 && r2 == 0, "ToolProject maxdist 5: far point skipped (returns %d), near point found (returns %d)", r1, r2);
+  }
+  PetscCall(ToolsDestroy(n, &T));
+  TU_CHECK(T == NULL, "ToolsDestroy sets the array to NULL");
+
+  /* no -tool_names: no tools */
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T));
+  TU_CHECK(n == 0 && T == NULL, "options: no -tool_names gives %d tools", (int)n);
+
+  /* bad input: an error code and a message naming the option */
+  const char *sph  = "-tool_names t -tool_t_patches 1 -tool_t_patch0_type sphere -tool_t_patch0_center 0,0,0 -tool_t_patch0_radius 1 -tool_t_patch0_axis 0,0,1 -tool_t_patch0_ref 1,0,0 -tool_t_patch0_range 0,90,0,90 ";
+  const char *tor  = "-tool_names t -tool_t_patches 1 -tool_t_patch0_type torus -tool_t_patch0_center 0,0,0 -tool_t_patch0_axis 0,0,1 -tool_t_patch0_ref 1,0,0 -tool_t_patch0_major 2 -tool_t_patch0_minor 0.5 -tool_t_patch0_range 0,90,0,90 ";
+  const char *pla  = "-tool_names t -tool_t_patches 1 -tool_t_patch0_type plane -tool_t_patch0_origin 0,0,0 -tool_t_patch0_e1 1,0,0 -tool_t_patch0_e2 0,1,0 -tool_t_patch0_range 0,1,0,1 ";
+  const char *coo  = "-tool_names t -tool_t_patches 1 -tool_t_patch0_type coons -tool_t_patch0_bottom_type line -tool_t_patch0_bottom_points 0,0,0,1,0,0 -tool_t_patch0_top_type line -tool_t_patch0_top_points 0,1,0,1,1,0 -tool_t_patch0_left_type line -tool_t_patch0_left_points 0,0,0,0,1,0 -tool_t_patch0_right_type line -tool_t_patch0_right_points 1,0,0,1,1,0 ";
+  const char *cases[][3] = {
+    {"-tool_names t -tool_t_patches 1 -tool_t_patch0_radius 1", "missing type", "-tool_t_patch0_type: missing"},
+    {"-tool_names t -tool_t_patches 0", "no patches", "-tool_t_patches 0"},
+    {"-tool_names t", "missing patch count", "-tool_t_patches: missing"},
+    {"-tool_t_patch0_radius 0", "radius <= 0", "-tool_t_patch0_radius 0|must be > 0"},
+    {"-tool_t_patch0_radius -2", "radius < 0", "-tool_t_patch0_radius -2|must be > 0"},
+    {"-tool_t_patch0_center 0,0", "wrong count of values (2 of 3)", "-tool_t_patch0_center: needs 3 values, got 2"},
+    {"-tool_t_patch0_range 0,90,0,90,5", "wrong count of values (5 of 4)", "-tool_t_patch0_range: needs 4 values, got 5"},
+    {"-tool_t_patch0_axis 0,0,0", "zero axis", "-tool_t_patch0_axis 0|zero vector"},
+    {"-tool_t_patch0_ref 0,0,3", "ref parallel to axis", "-tool_t_patch0_ref 0|zero or parallel to -tool_t_patch0_axis"},
+    {"-tool_t_patch0_range 0,90,40,40", "empty range", "-tool_t_patch0_range|empty range"},
+    {"-tool_t_patch0_range 0,190,0,90", "polar angle beyond 180", "-tool_t_patch0_range|must lie in [0, 180]"},
+    {"-tool_t_patch0_type cone", "unknown type", "-tool_t_patch0_type cone: unknown"},
+    {"-tool_t_patch0_sense 2", "sense 2", "-tool_t_patch0_sense 2: must be 1 or -1"},
+    {"TOR-tool_t_patch0_minor 2", "minor = major", "-tool_t_patch0_minor 2|must be smaller than -tool_t_patch0_major"},
+    {"TOR-tool_t_patch0_minor 3", "minor > major", "-tool_t_patch0_minor 3|must be smaller than"},
+    {"PLA-tool_t_patch0_e2 2,0,0", "plane e2 parallel to e1", "-tool_t_patch0_e2 2|zero or parallel to -tool_t_patch0_e1"},
+    {"COO-tool_t_patch0_right_points 1.3,0,0,1.3,1,0", "coons corners not meeting", "-tool_t_patch0: the boundary curves do not meet at corner (xi,eta)=(1,0): distance 0.3"},
+    {"COO-tool_t_patch0_bottom_type arc -tool_t_patch0_bottom_points 0,0,0,1,0,0,0.4,-1,0", "arc not equidistant", "-tool_t_patch0_bottom_points: arc end points not equidistant"},
+    {"COO-tool_t_patch0_bottom_type arc -tool_t_patch0_bottom_points 0,0,0,1,0,0,0.5,0,0", "arc diametrically opposite", "-tool_t_patch0_bottom_points|diametrically opposite"},
+    {"COO-tool_t_patch0_left_type arc", "arc with 6 values", "-tool_t_patch0_left_points: needs 9 values, got 6"},
+    {"COO-tool_t_patch0_top_type spline", "unknown curve type", "-tool_t_patch0_top_type spline: unknown"},
+    {"-tool_names t,t", "duplicate name", "-tool_names|given twice"},
+  };
+  for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
+    char           buf[4096];
+    const char    *bad = cases[k][0], *base = sph;
+    PetscErrorCode ierr;
+    if (!strncmp(bad, "TOR", 3)) base = tor, bad += 3;
+    else if (!strncmp(bad, "PLA", 3)) base = pla, bad += 3;
+    else if (!strncmp(bad, "COO", 3)) base = coo, bad += 3;
+    else if (!strncmp(bad, "-tool_names", 11)) base = "";
+    snprintf(buf, sizeof(buf), "%s %s", base, bad);
+    PetscCall(PetscOptionsClear(NULL));
+    PetscCall(PetscOptionsInsertString(NULL, buf));
+    errmsg[0] = 0;
+    n         = -1;
+    T         = NULL;
+    PetscCall(PetscPushErrorHandler(Capture, NULL));
+    ierr = ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T);
+    PetscCall(PetscPopErrorHandler());
+    PetscCall(ToolsDestroy(n, &T));
+    int  found = 1;
+    char want[512], *tok, *save = NULL;
+    snprintf(want, sizeof(want), "%s", cases[k][2]);
+    for (tok = strtok_r(want, "|", &save); tok; tok = strtok_r(NULL, "|", &save)) found = found && strstr(errmsg, tok) != NULL;
+    TU_CHECK(ierr != 0 && found, "bad options (%s): error code %d, message \"%s\"", cases[k][1], (int)ierr, errmsg);
+  }
+  /* the reference cases themselves are accepted */
+  {
+    const char *bases[4] = {sph, tor, pla, coo};
+    int         okc      = 0;
+    for (int k = 0; k < 4; k++) {
+      PetscCall(PetscOptionsClear(NULL));
+      PetscCall(PetscOptionsInsertString(NULL, bases[k]));
+      PetscCall(ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T));
+      okc += n == 1;
+      PetscCall(ToolsDestroy(n, &T));
+    }
+    TU_CHECK(okc == 4, "options: the 4 reference sets of the bad-input cases are valid (%d of 4)", okc);
+  }
+  PetscCall(PetscOptionsClear(NULL));
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------ 9. the examples of doc/tools.md */
+
+/* each ``` block of the document, newlines as spaces; returns the number of blocks */
+static int doc_blocks(const char *path, char blocks[][4096], int maxb)
+{
+  FILE *fp = fopen(path, "r");
+  char  line[1024];
+  int   nb = 0, in = 0;
+  if (!fp) return -1;
+  while (fgets(line, sizeof(line), fp)) {
+    if (!strncmp(line, "```", 3)) {
+      if (in) nb++;
+      else if (nb < maxb) blocks[nb][0] = 0;
+      in = !in;
+      continue;
+    }
+    if (in && nb < maxb) {
+      for (char *c = line; *c; c++)
+        if (*c == '\n') *c = ' ';
+      strncat(blocks[nb], line, 4095 - strlen(blocks[nb]));
+    }
+  }
+  fclose(fp);
+  return nb < maxb ? nb : maxb;
+}
+
+static PetscErrorCode test_doc_examples(void)
+{
+  static char blocks[16][4096];
+  char        path[PETSC_MAX_PATH_LEN] = "doc/tools.md";
+  int         nb, nok = 0;
+  Tool       *sph = NULL, *coo = NULL, *die = NULL;
+  PetscInt    nsph = 0, ncoo = 0, ndie = 0;
+
+  PetscFunctionBeginUser;
+  nb = doc_blocks(path, blocks, 16);
+  TU_CHECK(nb >= 5, "doc examples: %d option blocks in %s (run from the repository root)", nb, path);
+  for (int b = 0; b < nb; b++) {
+    PetscInt n;
+    Tool    *T;
+    PetscCall(PetscOptionsClear(NULL));
+    PetscCall(PetscOptionsInsertString(NULL, blocks[b]));
+    PetscCall(ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T));
+    nok += n == 1;
+    if (n == 1 && !strcmp(T[0].name, "punch") && T[0].npatch == 1 && !sph) sph = T, nsph = n;
+    else if (n == 1 && !strcmp(T[0].name, "punch") && T[0].npatch == 4 && !coo) coo = T, ncoo = n;
+    else if (n == 1 && !strcmp(T[0].name, "die") && !die) die = T, ndie = n;
+    else PetscCall(ToolsDestroy(n, &T));
+  }
+  TU_CHECK(nb > 0 && nok == nb && sph && coo && die, "doc examples: %d of %d blocks build one tool each (sphere punch, Coons punch, die found)", nok, nb);
+  if (sph && coo) {
+    const double sh[3] = {0, 0, 12.5}, R = 50.8;
+    double       emax = 0;
+    int          bad = 0, n = 0;
+    for (int a = 0; a <= 17; a++)
+      for (int b = 0; b <= 18; b++)
+        for (int k = 0; k < 3; k++) {
+          const double th = deg(5.0 * a), ph = deg(5.0 * b), t = -1.0 + 2.0 * k;
+          double       y[3] = {(R + t) * sin(th) * cos(ph), (R + t) * sin(th) * sin(ph), -R + (R + t) * cos(th) + sh[2]};
+          Projection   ps, pc;
+          n++;
+          if (ToolProject(sph, sh, y, PETSC_INFINITY, &ps) || ToolProject(coo, sh, y, PETSC_INFINITY, &pc) || pc.patch == 3 || fabs(ps.gap - t) > 1e-12) { /* the far shoulder plane must not win */
+            if (getenv("TOOL_DEBUG")) printf("# DEBUG th %g ph %g t %g: sphere gap %.17g, coons patch %d gap %.17g\n", 5.0 * a, 5.0 * b, t, ps.gap, pc.patch, pc.gap);
+            bad++;
+            continue;
+          }
+          emax = fmax(emax, fabs(pc.gap - ps.gap) / R);
+        }
+    TU_CHECK(bad == 0 && emax < 0.0104, "doc punch: sphere and 3 Coons patches + plane, %d points 1 above to 1 below the sphere (symmetry planes included): gaps differ by at most %.4f R", n, emax);
+    const double yq[3] = {55, 10, -50.8 + 0.5 + sh[2]};
+    Projection   pq;
+    const int    r = ToolProject(coo, sh, yq, PETSC_INFINITY, &pq);
+    TU_CHECK(r == 0 && pq.patch == 3 && pq.interior && fabs(pq.gap - 0.5) < 1e-12, "doc punch: a point 0.5 above the shoulder plane beyond the equator: patch %d, gap %.15g", pq.patch, pq.gap);
+  }
+  if (die) {
+    const double sh[3] = {0, 0, 0}, y1[3] = {60 * cos(deg(20)), 60 * sin(deg(20)), 0.5}, y2[3] = {48 * cos(deg(20)), 48 * sin(deg(20)), 0.0};
+    const double q[3] = {51.35 * cos(deg(20)), 51.35 * sin(deg(20)), 7.35};
+    Projection   p1, p2;
+    const int    r1 = ToolProject(die, sh, y1, PETSC_INFINITY, &p1), r2 = ToolProject(die, sh, y2, PETSC_INFINITY, &p2);
+    TU_CHECK(r1 == 0 && p1.patch == 1 && p1.interior && fabs(p1.gap - 0.5) < 1e-12 && fabs(p1.n[2] + 1) < 1e-15, "doc die: 0.5 below the flat face (Coons annulus): patch %d, gap %.15g, n_z %g", p1.patch, p1.gap, p1.n[2]);
+    TU_CHECK(r2 == 0 && p2.patch == 0 && p2.interior && fabs(p2.gap - (dist(y2, q) - 6.35)) < 1e-12, "doc die: under the shoulder (torus): patch %d, gap %.15g = |y - q| - r", p2.patch, p2.gap);
+  }
+  PetscCall(ToolsDestroy(nsph, &sph));
+  PetscCall(ToolsDestroy(ncoo, &coo));
+  PetscCall(ToolsDestroy(ndie, &die));
+  PetscCall(PetscOptionsClear(NULL));
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------ timing (not a test) */
+
+static double project_ns(const Patch *p, double thick)
+{
+  enum { NP = 4000 };
+  static double Y[NP][3];
+  Tool          t;
+  Patch         q     = *p;
+  const double  sh[3] = {0, 0, 0};
+  struct timespec t0, t1;
+  Projection      pr;
+  double          acc = 0;
+  tool_init(&t, "time", 1, &q);
+  for (int k = 0; k < NP; k++) {
+    double x[3], xu[3], xv[3], n[3];
+    const double u = uni(-0.1, 1.1), v = uni(-0.1, 1.1), tt = uni(-thick, thick);
+    PatchEval(p, u, v, x, xu, xv, NULL, NULL, NULL);
+    PatchNormal(p, u, v, n);
+    for (int i = 0; i < 3; i++) Y[k][i] = x[i] + tt * n[i];
+  }
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  for (int rep = 0; rep < 5; rep++)
+    for (int k = 0; k < NP; k++) {
+      ToolProject(&t, sh, Y[k], PETSC_INFINITY, &pr);
+      acc += pr.gap;
+    }
+  clock_gettime(CLOCK_MONOTONIC, &t1);
+  if (acc == 12345.678) printf("#\n");
+  return ((t1.tv_sec - t0.tv_sec) * 1e9 + (t1.tv_nsec - t0.tv_nsec)) / (5.0 * NP);
+}
+
+int main(int argc, char **argv)
+{
+  Patch oct[3];
+  const double c0[3] = {0, 0, 0};
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  octant_coons(c0, 1.0, oct);
+  const Patch pl = make_plane(), sp = make_sphere(1), spm = make_sphere(-1), cy = make_cylinder(1), cym = make_cylinder(-1), to = make_torus(1), tom = make_torus(-1), cc = make_coons_cone(), cz = make_coons_collapsed();
+
+  /* 1. derivatives */
+  test_derivatives("plane", &pl);
+  test_derivatives("sphere", &sp);
+  test_derivatives("cylinder", &cy);
+  test_derivatives("torus", &to);
+  test_derivatives("coons (2 arcs, 2 lines)", &cc);
+  test_derivatives("coons (4 great-circle arcs)", &oct[0]);
+
+  /* 2. normals */
+  test_normals("plane", &pl);
+  test_normals("sphere", &sp);
+  test_normals("sphere sense -1", &spm);
+  test_normals("cylinder", &cy);
+  test_normals("torus", &to);
+  test_normals("coons", &cc);
+
+  /* 3. Coons shapes */
+  test_coons_shapes();
+
+  /* 4. projection vs brute force */
+  test_projection("project plane", &pl, 0.5, 2.3);
+  test_projection("project sphere", &sp, 0.4, 1.3);
+  test_projection("project cylinder", &cy, 0.3, 2.2);
+  test_projection("project torus", &to, 0.2, 1.55);
+  test_projection("project coons (2 arcs, 2 lines)", &cc, 0.3, 1.6);
+  test_projection("project coons (spherical quad)", &oct[1], 0.3, 1.0);
+  test_projection("project coons (octant, one side collapsed into the pole)", &cz, 0.3, 1.0);
+  {
+    double n[3], emax = 0, J = 0;
+    for (int k = 0; k <= 10; k++) {
+      J    = fmax(J, PatchNormal(&cz, k / 10.0, 0.0, n));
+      emax = fmax(emax, fabs(n[2] - 1) + fabs(n[0]) + fabs(n[1]));
+    }
+    TU_CHECK(J == 0 && emax < 1e-6, "coons with a collapsed side: |x_xi x x_eta| = %g there, normal = the limit from inside (+z at the pole): error %.1e", J, emax);
+  }
+
+  /* 5. pole */
+  test_pole();
+
+  /* 6. multi-patch */
+  test_multipatch();
+
+  /* 7. normal derivative */
+  test_normal_derivative("dn/dy plane", &pl, 0.5, 1);
+  test_normal_derivative("dn/dy sphere", &sp, 0.4, 1);
+  test_normal_derivative("dn/dy sphere sense -1", &spm, 0.4, 1);
+  test_normal_derivative("dn/dy cylinder", &cy, 0.3, 1);
+  test_normal_derivative("dn/dy cylinder sense -1", &cym, 0.3, 1);
+  test_normal_derivative("dn/dy torus", &to, 0.2, 1);
+  test_normal_derivative("dn/dy torus sense -1", &tom, 0.2, 1);
+  {
+    Projection pr = {0, 0.5, 0.5, {0, 0, 0}, {0, 0, 1}, 0, 1};
+    double     dn[9], y[3] = {0, 0, 0}, sh[3] = {0, 0, 0};
+    TU_CHECK(PatchNormalDerivative(&cc, sh, y, &pr, dn) == 1, "dn/dy coons: returns 1 (no analytic form)");
+  }
+
+  /* 8. options */
+  PetscCall(test_options());
+
+  /* 9. the examples of doc/tools.md */
+  PetscCall(test_doc_examples());
+
+  /* timing */
+  printf("# timing: ToolProject %.0f ns/call (sphere patch), %.0f ns/call (torus patch), %.0f ns/call (coons patch, 4 great-circle arcs), %.0f ns/call (coons, 2 arcs + 2 lines)\n", project_ns(&sp, 0.3), project_ns(&to, 0.2), project_ns(&oct[0], 0.3), project_ns(&cc, 0.3));
+
+  PetscCall(PetscFinalize());
+  TU_RETURN();
+}
