@@ -46,7 +46,8 @@ typedef struct {
   PetscInt  load_grow_its, load_max_cuts, load_max_steps;
   Predictor load_predictor;
   /* contact */
-  char       contact_set[ATRITO_NAME_LEN]; /* slave nodes                                  */
+  char       contact_set[8][ATRITO_NAME_LEN]; /* slave nodes: the union of these sets       */
+  PetscInt   ncontact_set;
   ContactLaw law;
   PetscBool  contact_fd;         /* per-node finite-difference tangent instead of the analytic one */
   PetscReal  contact_search;     /* pairing: skip a tool whose box is farther than this      */

@@ -37,6 +37,8 @@ typedef struct {
   double    c[3], a[3], e[3], R, r;                   /* sphere, cylinder, torus */
   double    t0, t1, s0, s1;                           /* parameter ranges: first, second parameter */
   Curve     C0, C1, D0, D1;                           /* coons */
+  double    bbox[6];                                  /* reference bounding box (set with the tool) */
+  int       has_box;                                  /* bbox is set                              */
 } Patch;
 
 typedef struct {

@@ -321,7 +321,9 @@ PETSC_RE = re.compile(r"Petsc Release Version ([\d.]+)")
 
 
 def atrito_cmd(cells, ranks, extra, outdir, step_args):
-    cmd = [] if ranks == 1 else ["mpiexec", "-n", str(ranks)]
+    # orte_abort_on_non_zero_status 0: on the expected error exit mpiexec then waits for every rank
+    # instead of killing the others, so that their CPU time is accounted (other-load measurement)
+    cmd = [] if ranks == 1 else ["mpiexec", "--mca", "orte_abort_on_non_zero_status", "0", "-n", str(ranks)]
     cmd += [SNAP["atrito"], "-options_file", CASE, "-box_cells", ",".join(map(str, cells))] + step_args
     cmd += ["-output_interval", "0", "-output_dir", outdir, "-log_view", "-memory_view"] + extra
     return cmd
@@ -381,7 +383,13 @@ def run_atrito(cells, ranks, extra, notes):
 
 
 QUIET = 0.3            # cores of load by other processes above which a run counts as disturbed
-EXTRA = {"left": 120.0, "reruns": 0, "waited": 0.0}  # time budget for waiting and re-running (s)
+# time for waiting and re-running, per phase (s): kernel driver, 1-rank runs, 2-rank runs
+BUDGET = {"kernel": 20.0, "serial": 90.0, "parallel": 60.0}
+EXTRA = {"left": 0.0, "reruns": 0, "waited": 0.0}
+
+
+def disturbed(rec):
+    return rec.get("other") is not None and rec["other"] > QUIET
 
 
 def wait_quiet(max_wait=20.0):
@@ -519,6 +527,17 @@ def write_section(path, body):
         f.write(new)
 
 
+def qmed(recs, key="AtritoJacobian"):
+    """median over the runs that other processes did not disturb, and their number"""
+    q = [r[key] for r in recs if not disturbed(r)]
+    return (statistics.median(q) if q else None), len(q)
+
+
+def qmed_str(recs):
+    m, n = qmed(recs)
+    return f"{m:,.0f} ({n})" if m is not None else "– (0)"
+
+
 def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, load0, load1, petsc_v, sizes, par_cfg):
     L = []
     A = L.append
@@ -529,7 +548,8 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
     A(f"- CPU: {mi['cpu']}, {mi['cores']} cores visible to the OS, {mi['mem']} memory, Linux {mi['kernel']}")
     A(f"- Compiler: `mpicc` → {mi['cc']}; flags `{kern['compile'].split(' ', 1)[1]}` (from the Makefile)")
     A(f"- PETSc {petsc_v or mi['petsc_pc']} (Debian package), LU by MUMPS, BLAS `{mi['blas']}` with `OPENBLAS_NUM_THREADS=1`")
-    A(f"- MPI: {mi['mpi']} (default binding)")
+    A(f"- MPI: {mi['mpi']} (default binding; `--mca orte_abort_on_non_zero_status 0` so that mpiexec waits for "
+      "both ranks on the expected error exit and their CPU time is accounted)")
     dirty = f"; uncommitted changes in {', '.join('`' + d + '`' for d in mi['dirty'])}" if mi["dirty"] else ""
     A(f"- Code: commit `{mi['commit']}`{dirty}; binaries {build_state}")
     A(f"- Load average (1 min) before / after the benchmark: {load0:.2f} / {load1:.2f}. Other sessions share this "
@@ -540,7 +560,8 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
       "with Swift hardening, F-bar hex8, 2×2×2 Gauss points), `-box_cells` as in the tables, "
       f"`{' '.join(STEP_ARGS)} -output_interval 0 -log_view -memory_view`. Each run does two converged load steps of "
       "1/8 of the load and then stops with the expected error `-load_max_steps 2 reached`; `-log_view` and "
-      "`-memory_view` are still printed on that exit" + (" (see the notes below)." if notes else ".") )
+      "`-memory_view` are still printed on that exit"
+      + (" — except in some runs, see the notes below." if any("fell back" in n for n in notes) else "."))
     if pfrac:
         A(f"- Plasticity is active: in a check run of the {sizes[0][0][0]}×{sizes[0][0][1]}×{sizes[0][0][2]} mesh, "
           f"{100 * pfrac[1]:.1f} % of the cells carry plastic strain after step 1 and {100 * pfrac[2]:.1f} % after step 2.")
@@ -573,8 +594,8 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
 
     A("### Full assembly (real code path)\n")
     A("| Cells (mesh) | Jacobian assembly | Ranks | Runs | Residual el/s/core median [min – max] | "
-      "Jacobian el/s/core median [min – max] | Evaluations per run (res./Jac.) | Peak RSS per rank, MiB | LU factorisation share of wall time | Other processes' load, cores (max over runs) |")
-    A("|---|---|---|---|---|---|---|---|---|---|")
+      "Jacobian el/s/core median [min – max] | Jacobian median, undisturbed runs (n) | Evaluations per run (res./Jac.) | Peak RSS per rank, MiB | LU factorisation share of wall time | Other processes' load, cores (max over runs) |")
+    A("|---|---|---|---|---|---|---|---|---|---|---|")
     rows = [(c, v, 1, recs) for (c, v), recs in results.items()] + [(c, v, par_cfg[1], recs) for (c, v), recs in par.items()]
     vlabel = {k: lab for k, lab, _ in VARIANTS}
     for cells, v, ranks, recs in rows:
@@ -585,7 +606,7 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
         rss = statistics.median([r["rss_max"] for r in recs])
         lus = statistics.median([r["lu_time"] / r["wall"] for r in recs if r["lu_time"]]) if all(r["lu_time"] for r in recs) else None
         A(f"| {n:,} ({cells[0]}×{cells[1]}×{cells[2]}) | {vlabel[v]} | {ranks} | {len(recs)} | {fmt_rate(res)} | "
-          f"{fmt_rate(jac)} | {ev['AtritoResidual'][0]} / {ev['AtritoJacobian'][0]} | {mib(rss):,.0f}"
+          f"{fmt_rate(jac)} | {qmed_str(recs)} | {ev['AtritoResidual'][0]} / {ev['AtritoJacobian'][0]} | {mib(rss):,.0f}"
           + (f" (total {mib(statistics.median([r['rss_total'] for r in recs])):,.0f})" if ranks > 1 else "")
           + f" | {'%.0f %%' % (100 * lus) if lus is not None else 'n/a'} | "
           + (f"{max(r['other'] for r in recs):.2f}" if all(r["other"] is not None for r in recs) else "n/a") + " |")
@@ -647,11 +668,16 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
           f"({dom(shares_aij)}); with COO {span(shares_coo)} % ({dom(shares_coo)}). The kernel share is estimated "
           "with the all-plastic kernel benchmark, so if fewer points return-map in the real run the kernel share is "
           "somewhat overstated.")
-    for v, d in (("aij", aij), ("coo", coo)):
-        if len(d) > 1:
-            ks = sorted(d, key=lambda c: c[0] * c[1] * c[2])
+    for v in ("aij", "coo"):
+        ks = sorted((c for (c, vv) in results if vv == v), key=lambda c: c[0] * c[1] * c[2])
+        if len(ks) > 1:
+            q = {c: qmed(results[(c, v)])[0] for c in ks}
+            use_q = q[ks[0]] is not None and q[ks[-1]] is not None
+            d = q if use_q else {c: statistics.median([r["AtritoJacobian"] for r in results[(c, v)]]) for c in ks}
             A(f"- Size dependence ({vlabel[v]}): from {ks[0][0] * ks[0][1] * ks[0][2]:,} to {ks[-1][0] * ks[-1][1] * ks[-1][2]:,} "
-              f"cells the Jacobian median changes by {100 * (d[ks[-1]] / d[ks[0]] - 1):+.0f} %.")
+              f"cells the Jacobian median {'of the undisturbed runs ' if use_q else ''}changes by "
+              f"{100 * (d[ks[-1]] / d[ks[0]] - 1):+.0f} % (" + ", ".join(f"{d[c]:,.0f}" for c in ks) + ")"
+              + ("." if use_q else "; some of these runs were disturbed by other processes."))
     if par_best is not None:
         ser = coo.get(par_cfg[0]) if par else None
         parts = []
@@ -667,7 +693,7 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
               "communicated in MatAssemblyBegin/End, which COO assembly arranges once at preallocation."
               + (" Some of these runs shared the cores with other processes (last column of the first table), "
                  "which on 2 ranks of a 2-core machine directly slows them: take these figures as lower bounds."
-                 if any(r["other"] is not None and r["other"] > QUIET for recs in par.values() for r in recs) else ""))
+                 if any(disturbed(r) for recs in par.values() for r in recs) else ""))
     ratios = [statistics.median([r["AtritoResidual"] for r in recs]) / statistics.median([r["AtritoJacobian"] for r in recs])
               for recs in list(results.values()) + list(par.values())]
     lus = [r["lu_time"] / r["wall"] for recs in list(results.values()) + list(par.values()) for r in recs if r["lu_time"]]
@@ -702,6 +728,7 @@ def main():
     notes = set()
 
     log("kernel-only driver")
+    EXTRA["left"] = BUDGET["kernel"]
     wait_quiet()
     kern = kernel_bench(kreps)
     if kern["other"] is not None and kern["other"] > QUIET and EXTRA["left"] > 10:
@@ -719,6 +746,7 @@ def main():
     pfrac = plastic_fraction(sizes[0][0])
 
     results, petsc_v = {}, None
+    EXTRA["left"] = BUDGET["serial"]
     for cells, reps in sizes:
         for rep in range(reps):
             for key, _, extra in VARIANTS:
@@ -728,6 +756,7 @@ def main():
                 log(f"{cells} {key} run {rep + 1}/{reps}: res {rec['AtritoResidual']:,.0f} jac {rec['AtritoJacobian']:,.0f} "
                     f"el/s/core, wall {rec['wall']:.1f} s")
     par = {}
+    EXTRA["left"] = BUDGET["parallel"]
     pcells, pranks, preps = par_cfg
     for rep in range(preps):
         for key, _, extra in VARIANTS:
@@ -739,13 +768,15 @@ def main():
         notes.add("some runs were made to the end with -load_steps 2 because -log_view was missing on the error exit")
     load1 = os.getloadavg()[0]
     allrecs = [r for recs in list(results.values()) + list(par.values()) for r in recs]
-    ndist = sum(1 for r in allrecs if r["other"] is not None and r["other"] > QUIET)
+    ndist = sum(1 for r in allrecs if disturbed(r))
     notes.add(f"Disturbance by other processes: before each run the script waited for the machine to be quiet "
               f"(other load < {QUIET} cores, at most 20 s), and re-ran a disturbed run once, keeping the less "
-              f"disturbed of the two, within a budget of 120 s: {EXTRA['waited']:.0f} s waited, {EXTRA['reruns']} "
+              f"disturbed of the two, within a time budget ({', '.join(f'{k} {v:.0f} s' for k, v in BUDGET.items())}): "
+              f"{EXTRA['waited']:.0f} s waited, {EXTRA['reruns']} "
               f"re-runs; {ndist} of the {len(allrecs)} kept runs still had other load above {QUIET} cores"
               + (f" and the kernel driver had {kern['other']:.2f}" if kern.get("other") is not None and kern["other"] > QUIET else "")
-              + ". Ranges that are wide in the tables come from such runs; the medians are less affected.")
+              + ". Wide ranges in the tables come from such runs; the medians are less affected, and the column "
+              "\"Jacobian median, undisturbed runs\" leaves them out.")
     t_total = time.monotonic() - t_start
     body = build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, load0, load1, petsc_v, sizes, par_cfg)
     write_section(args.output, body)

@@ -217,8 +217,22 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
     PetscCheck(cs->load_max_steps >= 1, comm, PETSC_ERR_USER_INPUT, "-load_max_steps %" PetscInt_FMT " must be >= 1", cs->load_max_steps);
 
     /* contact */
-    PetscCall(PetscStrncpy(cs->contact_set, "contact", sizeof(cs->contact_set)));
-    PetscCall(PetscOptionsString("-contact_set", "Mesh set of the slave nodes", NULL, cs->contact_set, cs->contact_set, sizeof(cs->contact_set), NULL));
+    {
+      char     *sets[8];
+      PetscInt  nsets = 8;
+      PetscBool sset;
+      PetscCall(PetscOptionsStringArray("-contact_set", "Mesh sets of the slave nodes (their union)", NULL, sets, &nsets, &sset));
+      if (!sset || nsets == 0) {
+        PetscCall(PetscStrncpy(cs->contact_set[0], "contact", sizeof(cs->contact_set[0])));
+        cs->ncontact_set = 1;
+      } else {
+        for (PetscInt k = 0; k < nsets; k++) {
+          PetscCall(PetscStrncpy(cs->contact_set[k], sets[k], sizeof(cs->contact_set[k])));
+          PetscCall(PetscFree(sets[k]));
+        }
+        cs->ncontact_set = nsets;
+      }
+    }
     cs->law.KN = 1e5;
     cs->law.KT = 5e3;
     cs->law.mu = 0;

@@ -69,13 +69,14 @@ PetscErrorCode ContactSetUp(Problem *pb)
     }
   }
 
-  PetscCall(DMGetLabel(pb->dm, cs->contact_set, &label));
-  found = label ? PETSC_TRUE : PETSC_FALSE;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, pb->comm));
-  PetscCheck(found, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set: the mesh has no set named '%s'", cs->contact_set);
   PetscCall(PetscCalloc1(pb->nv, &mark));
   PetscCall(DMPlexGetChart(pb->dm, &pStart, &pEnd));
-  if (label)
+  for (PetscInt s = 0; s < cs->ncontact_set; s++) {
+    PetscCall(DMGetLabel(pb->dm, cs->contact_set[s], &label));
+    found = label ? PETSC_TRUE : PETSC_FALSE;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, pb->comm));
+    PetscCheck(found, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set: the mesh has no set named '%s'", cs->contact_set[s]);
+    if (!label) continue;
     for (PetscInt p = pStart; p < pEnd; p++) {
       PetscInt val, *cl = NULL, ncl;
       PetscCall(DMLabelGetValue(label, p, &val));
@@ -87,6 +88,7 @@ PetscErrorCode ContactSetUp(Problem *pb)
       }
       PetscCall(DMPlexRestoreTransitiveClosure(pb->dm, p, PETSC_TRUE, &ncl, &cl));
     }
+  }
   for (PetscInt v = 0; v < pb->nv; v++)
     if (mark[v] && pb->vowned[v]) pb->ns++;
   PetscCall(PetscMalloc4(pb->ns, &pb->slave, 3 * pb->ns, &pb->sgdof, 3 * pb->ns, &pb->seed, pb->ns, &pb->has_seed));
@@ -121,8 +123,8 @@ PetscErrorCode ContactSetUp(Problem *pb)
   {
     PetscInt n = pb->ns;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, pb->comm));
-    PetscCall(PetscPrintf(pb->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, cs->contact_set, pb->ntools, (double)cs->law.KN, (double)cs->law.KT, (double)cs->law.mu, cs->contact_fd ? "finite-difference" : "analytic"));
-    PetscCheck(n > 0, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set '%s' holds no vertex", cs->contact_set);
+    PetscCall(PetscPrintf(pb->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, cs->contact_set[0], cs->ncontact_set > 1 ? ", ..." : "", pb->ntools, (double)cs->law.KN, (double)cs->law.KT, (double)cs->law.mu, cs->contact_fd ? "finite-difference" : "analytic"));
+    PetscCheck(n > 0, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set '%s' holds no vertex", cs->contact_set[0]);
   }
   PetscFunctionReturn(0);
 }

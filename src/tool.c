@@ -730,7 +730,28 @@ int ToolProject(const Tool *t, const double shift[3], const double y[3], double 
     if (o > 0.0) bd += o * o;
   }
   if (sqrt(bd) > maxdist) return 1;
-  for (int k = 0; k < t->npatch; k++) {
+  /* patches in order of the distance to their boxes; a patch whose box is farther than maxdist, or
+     than the best interior solution so far, cannot win */
+  int    order[64], np = t->npatch < 64 ? t->npatch : 64;
+  double bdist[64];
+  for (int k = 0; k < np; k++) {
+    double b2 = 0.0;
+    if (t->patch[k].has_box)
+      for (int i = 0; i < 3; i++) {
+        const double o = fmax(t->patch[k].bbox[2 * i] - yr[i], yr[i] - t->patch[k].bbox[2 * i + 1]);
+        if (o > 0.0) b2 += o * o;
+      }
+    bdist[k] = sqrt(b2);
+    int j    = k;
+    while (j > 0 && bdist[order[j - 1]] > bdist[k]) {
+      order[j] = order[j - 1];
+      j--;
+    }
+    order[j] = k;
+  }
+  for (int kk = 0; kk < t->npatch; kk++) {
+    const int k = kk < np ? order[kk] : kk;
+    if (kk < np && (bdist[k] > maxdist || (ki >= 0 && bdist[k] > sqrt(bi.d2)))) continue;
     if (PatchClosest(&t->patch[k], yr, maxdist, &c) || !(c.d2 >= 0.0)) continue; /* skipped, or not a number */
     if (c.interior && c.d2 < bi.d2) {
       bi = c;
@@ -1211,6 +1232,8 @@ PetscErrorCode ToolsCreateFromOptions(MPI_Comm comm, PetscInt *ntools, Tool **to
     for (int j = 0; j < t->npatch; j++) {
       double b[6];
       PatchBox(&t->patch[j], b);
+      for (int i = 0; i < 6; i++) t->patch[j].bbox[i] = b[i];
+      t->patch[j].has_box = 1;
       for (int i = 0; i < 3; i++) {
         t->bbox[2 * i]     = fmin(t->bbox[2 * i], b[2 * i]);
         t->bbox[2 * i + 1] = fmax(t->bbox[2 * i + 1], b[2 * i + 1]);
