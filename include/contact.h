@@ -38,7 +38,8 @@ int ContactReturnMap(const ContactLaw *law, const double tTn[2], const double dg
    In:  law; gap g; normal n; dn = d n / d y (3x3, row-major; NULL for a flat tool); frame seed s;
         committed tangential pressure tTn (zero if the node was not in contact); slip increment ds.
    Out: residual contribution R[3] (= -f), tangent K = dR/dy (3x3, may be NULL), the frame t1,
-        the pressures tN and tT[2], and the status. An open node (g >= 0) contributes nothing. */
+        the pressures tN and tT[2], and the status. An open node (g > 0) contributes nothing; a touching
+   node (g = 0) is active with zero force and full stiffness. */
 int ContactNodeEval(const ContactLaw *law, double g, const double n[3], const double *dn, const double s[3], const double tTn[2], const double ds[3], double R[3], double *K, double t1[3], double *tN, double tT[2]);
 
 #endif

@@ -79,8 +79,8 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(7, 5))
-    for name, t, f in runs:
-        ax.plot(t, f, "-", label=name)
+    for k, (name, t, f) in enumerate(runs):
+        ax.plot(t, f, ["-", "--", "-.", ":"][k % 4], label=name)
     for mu, pts in sorted(ref.items()):
         ax.plot(pts[:, 0], pts[:, 1], "o" if mu == 0 else "s", mfc="none", color="k" if mu == 0 else "tab:red",
                 label=f"reference (Lee et al.), mu = {mu:g}")

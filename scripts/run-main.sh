@@ -1,20 +1,26 @@
 #!/usr/bin/env bash
-# The main job: the cases of the code, serial and on 2 ranks, with a summary of the results.
+# The main job: the hemispherical punch stretching benchmark on the seed-size mesh, frictionless
+# and with friction (mu = 0.15), then the punch force against travel next to the reference, and
+# the figures (out/benchmark/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 PY=${PYTHON:-/usr/bin/python3}
-for c in tension_bar clamped_beam blank_point; do
-  echo "== cases/$c.opts (1 rank)"
-  bin/atrito -options_file cases/$c.opts -output_dir out/$c
-  echo "== cases/$c.opts (2 ranks)"
-  mpiexec --oversubscribe -n 2 bin/atrito -options_file cases/$c.opts -output_dir out/${c}_np2 | tail -n 2
+mkdir -p out/benchmark
+for c in hemisphere_frictionless hemisphere_friction; do
+  echo "== cases/$c.opts"
+  bin/atrito -options_file cases/$c.opts | tee out/$c.log | grep -E "^(mesh|contact|done)|retrying"
 done
 echo
-echo "== uniaxial tension against the closed form"
-$PY tests/check_tension.py out/tension_bar/history.csv pull_fx 1 10 3 589 1e-4 0.216 69004
-for c in tension_bar clamped_beam blank_point; do
-  $PY tests/compare_history.py out/$c/history.csv out/${c}_np2/history.csv 8 "$c: 1 and 2 ranks"
-done
+echo "== punch force (full sheet) against travel, with the reference (Lee, Wagoner & Nakamachi)"
+$PY scripts/plot_history.py out/hemisphere_frictionless=frictionless out/hemisphere_friction=friction \
+  --out out/benchmark/force_travel.png
 echo
-echo "Results: out/<case>/history.csv (one row per converged step), out/<case>/fields.xmf (open in ParaView)"
+echo "== equivalent plastic strain against the radius"
+$PY scripts/plot_radial.py out/hemisphere_frictionless=frictionless out/hemisphere_friction=friction \
+  --travels 20,30,40 --out out/benchmark/radial.png
+$PY scripts/plot_sheet.py out/hemisphere_friction out/benchmark/sheet_friction.png --title "mu = 0.15, 40 mm"
+$PY scripts/plot_sheet.py out/hemisphere_frictionless out/benchmark/sheet_frictionless.png --title "frictionless, 40 mm"
+echo
+echo "Histories: out/hemisphere_*/history.csv and contact.csv; fields: out/hemisphere_*/fields.xmf (ParaView);"
+echo "figures: out/benchmark/*.png"

@@ -96,7 +96,7 @@ int ContactNodeEval(const ContactLaw *law, double g, const double n[3], const do
     const double a[3] = {fabs(n[0]) < 0.9 ? 1.0 : 0.0, fabs(n[0]) < 0.9 ? 0.0 : 1.0, 0.0};
     ContactFrame(n, a, t1, t2);
   }
-  if (g >= 0) return CONTACT_OPEN;
+  if (g > 0) return CONTACT_OPEN; /* touching (g = 0) is active, with zero force and full stiffness */
 
   const double p = -g;
   *tN            = law->KN * p;

@@ -166,9 +166,9 @@ PetscErrorCode ContactSeed(Problem *pb, Vec Uloc, PetscReal lambda, PetscBool fr
     if (!from_committed) {
       /* start of a Newton iteration: eq 30, t2 = n x t1(previous iteration), t1 = t2 x n, for the
          nodes in contact; a node out of contact forgets its frame */
-      if (pr.gap < 0 && pb->has_seed[i] && !ContactFrame(pr.n, pb->seed + 3 * i, t1, t2))
+      if (pr.gap <= 0 && pb->has_seed[i] && !ContactFrame(pr.n, pb->seed + 3 * i, t1, t2))
         for (int k = 0; k < 3; k++) pb->seed[3 * i + k] = t1[k];
-      else if (pr.gap >= 0) pb->has_seed[i] = PETSC_FALSE;
+      else if (pr.gap > 0) pb->has_seed[i] = PETSC_FALSE;
     }
     if (!pb->has_seed[i]) { /* first contact: the chord of eq 28 */
       Chord(pb, tool, &pr, pb->seed + 3 * i);
@@ -206,7 +206,7 @@ static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda
   st->patch = pr.patch;
   st->xi    = pr.xi;
   st->eta   = pr.eta;
-  if (pr.gap >= 0) return 0;
+  if (pr.gap > 0) return 0;
 
   const Tool *tl = &pb->tools[tool];
   ToolShift(tl, lambda, sh);

@@ -427,7 +427,7 @@ static PetscErrorCode LocalWithBC(Problem *pb, Vec U, PetscReal lambda)
 
 static const char *FailureCause(Problem *pb, SNESConvergedReason reason, char *buf, size_t len)
 {
-  if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN) {
+  if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN || pb->ndomain_err) {
     if (pb->bad_status == MAT_ERR_RETURNMAP) snprintf(buf, len, "the local return map did not converge (element id %d)", (int)pb->bad_cell_id);
     else snprintf(buf, len, "an element inverted (element id %d)", (int)pb->bad_cell_id);
   } else if (reason == SNES_DIVERGED_FNORM_NAN) snprintf(buf, len, "NaN or Inf in the residual");

@@ -34,6 +34,7 @@ run output-np1      mpiexec -n 1 bin/test_output -output_dir "$TEST_OUT/output1"
 run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
 run solver          bash tests/test_solver.sh
 run contact         bash tests/test_contact.sh
+run benchmark       bash tests/test_benchmark.sh
 run bad-input       bash tests/test_bad_input.sh
 
 echo "$pass passed, $fail failed"
