@@ -8,6 +8,7 @@
 #include "fe.h"
 #include "contact.h"
 #include "tool.h"
+#include "iorows.h"
 
 #define ATRITO_MAX_BC   32
 #define ATRITO_NAME_LEN 256
@@ -104,7 +105,15 @@ typedef struct {
   PetscScalar *coo_v;
   PetscBool *vowned;   /* nv                                                           */
   PetscInt *node_id, *elem_id; /* source ids (1-based) per local vertex / cell          */
+  PetscInt *node_src, *elem_src; /* 0-based position in the source mesh: the rank-independent
+                                  numbering of the output and checkpoint rows              */
   PetscInt  nv_global, ne_global;
+
+  /* output and checkpoint rows, in the source mesh's order */
+  PetscInt  nvo;       /* owned vertices                                                 */
+  PetscInt *vloc;      /* their local indices                                           */
+  PetscInt *vrow;      /* per local vertex: its row among the owned ones, -1 if a ghost */
+  IORows    rv, rc;    /* owned vertices, cells                                         */
 
   /* boundary conditions */
   PetscInt nbc;

@@ -442,7 +442,7 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
     PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
     PetscCall(PetscSectionCreate(PETSC_COMM_SELF, &idsec));
     PetscCall(PetscSectionSetChart(idsec, pStart, pEnd));
-    for (PetscInt p = pStart; p < pEnd; p++) PetscCall(PetscSectionSetDof(idsec, p, 1));
+    for (PetscInt p = pStart; p < pEnd; p++) PetscCall(PetscSectionSetDof(idsec, p, 2)); /* id, source index */
     PetscCall(PetscSectionSetUp(idsec));
     PetscCall(PetscSectionGetStorageSize(idsec, &n));
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &idvec));
@@ -450,7 +450,8 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
     for (PetscInt p = pStart; p < pEnd; p++) {
       PetscInt off;
       PetscCall(PetscSectionGetOffset(idsec, p, &off));
-      a[off] = (p >= vStart && p < vEnd) ? (PetscScalar)md.node_id[p - vStart] : (PetscScalar)md.elem_id[p];
+      a[off]     = (p >= vStart && p < vEnd) ? (PetscScalar)md.node_id[p - vStart] : (PetscScalar)md.elem_id[p];
+      a[off + 1] = (p >= vStart && p < vEnd) ? (PetscScalar)(p - vStart) : (PetscScalar)p;
     }
     PetscCall(VecRestoreArray(idvec, &a));
   }
@@ -505,6 +506,7 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
     pb->nv     = vEnd - vStart;
     pb->vstart = vStart;
     PetscCall(PetscMalloc5(8 * pb->nc, &pb->cv, 3 * pb->nv, &pb->X, pb->nv, &pb->node_id, pb->nc, &pb->elem_id, pb->nc, &pb->einfo));
+    PetscCall(PetscMalloc2(pb->nv, &pb->node_src, pb->nc, &pb->elem_src));
     PetscCall(PetscMemzero(pb->einfo, pb->nc * sizeof(ElementInfo)));
     for (PetscInt c = cStart; c < cEnd; c++) {
       const PetscInt *cone;
@@ -522,8 +524,13 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
     for (PetscInt p = cStart; p < vEnd; p++) {
       PetscInt off;
       PetscCall(PetscSectionGetOffset(idsec, p, &off));
-      if (p < cEnd) pb->elem_id[p - cStart] = (PetscInt)PetscRealPart(ida[off]);
-      else if (p >= vStart) pb->node_id[p - vStart] = (PetscInt)PetscRealPart(ida[off]);
+      if (p < cEnd) {
+        pb->elem_id[p - cStart]  = (PetscInt)PetscRealPart(ida[off]);
+        pb->elem_src[p - cStart] = (PetscInt)PetscRealPart(ida[off + 1]);
+      } else if (p >= vStart) {
+        pb->node_id[p - vStart]  = (PetscInt)PetscRealPart(ida[off]);
+        pb->node_src[p - vStart] = (PetscInt)PetscRealPart(ida[off + 1]);
+      }
     }
     PetscCall(VecRestoreArrayRead(idvec, &ida));
     PetscCall(PetscSectionDestroy(&idsec));
@@ -550,6 +557,7 @@ PetscErrorCode ProblemDestroyMesh(Problem *pb)
   PetscFunctionBeginUser;
   for (PetscInt b = 0; b < pb->nbc; b++) PetscCall(PetscFree3(pb->bc[b].loff, pb->bc[b].val, pb->bc[b].own));
   PetscCall(PetscFree5(pb->cv, pb->X, pb->node_id, pb->elem_id, pb->einfo));
+  PetscCall(PetscFree2(pb->node_src, pb->elem_src));
   PetscCall(PetscFree(pb->vloff));
   PetscCall(PetscFree(pb->vowned));
   PetscCall(PetscFree3(pb->cgdof, pb->cperm, pb->cndof));

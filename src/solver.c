@@ -9,6 +9,7 @@
 #include "atrito.h"
 #include "tensor.h"
 #include "output.h"
+#include "iorows.h"
 
 static void BoundaryValues(const Problem *pb, PetscScalar *u, PetscReal lambda)
 {
@@ -201,135 +202,130 @@ PetscErrorCode HistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscReal time
   PetscFunctionReturn(0);
 }
 
-/* Output ordering: owned vertices and cells by their global numbers */
-typedef struct {
-  PetscInt  nvo, voff, *vloc;  /* owned vertices: count, first global number, local index of each row */
-  PetscInt  eoff;              /* first global cell number                                          */
-  PetscInt *gnum;              /* global number of every local vertex                               */
-} OutputMap;
-
-static PetscErrorCode OutputMapCreate(Problem *pb, OutputMap *om)
+/* Output rows: the owned vertices and the cells, in the source mesh's order (iorows.h) */
+static PetscErrorCode OutputRowsCreate(Problem *pb)
 {
-  IS              vis, cis;
-  const PetscInt *vn, *cn;
+  PetscInt *src;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetVertexNumbering(pb->dm, &vis));
-  PetscCall(DMPlexGetCellNumbering(pb->dm, &cis));
-  PetscCall(ISGetIndices(vis, &vn));
-  PetscCall(ISGetIndices(cis, &cn));
-  PetscCall(PetscMalloc2(pb->nv, &om->vloc, pb->nv, &om->gnum));
-  om->nvo  = 0;
-  om->voff = PETSC_MAX_INT;
+  PetscCall(PetscMalloc2(pb->nv, &pb->vloc, pb->nv, &pb->vrow));
+  pb->nvo = 0;
   for (PetscInt v = 0; v < pb->nv; v++) {
-    om->gnum[v] = vn[v] >= 0 ? vn[v] : -(vn[v] + 1);
-    if (vn[v] >= 0) {
-      om->nvo++;
-      om->voff = PetscMin(om->voff, vn[v]);
-    }
+    pb->vrow[v] = pb->vowned[v] ? pb->nvo : -1;
+    if (pb->vowned[v]) pb->vloc[pb->nvo++] = v;
   }
-  if (!om->nvo) om->voff = 0;
-  for (PetscInt v = 0; v < pb->nv; v++)
-    if (vn[v] >= 0) om->vloc[vn[v] - om->voff] = v;
-  om->eoff = pb->nc ? cn[0] : 0;
-  for (PetscInt c = 0; c < pb->nc; c++) PetscCheck(cn[c] == om->eoff + c, PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell numbering is not contiguous");
-  PetscCall(ISRestoreIndices(vis, &vn));
-  PetscCall(ISRestoreIndices(cis, &cn));
+  PetscCall(PetscMalloc1(PetscMax(pb->nvo, pb->nc), &src));
+  for (PetscInt k = 0; k < pb->nvo; k++) src[k] = pb->node_src[pb->vloc[k]];
+  PetscCall(IORowsCreate(pb->comm, pb->nvo, src, &pb->rv));
+  PetscCall(IORowsCreate(pb->comm, pb->nc, pb->elem_src, &pb->rc));
+  PetscCall(PetscFree(src));
+  PetscCheck(pb->rv.N == pb->nv_global && pb->rc.N == pb->ne_global, pb->comm, PETSC_ERR_PLIB, "output rows: %" PetscInt_FMT " vertices and %" PetscInt_FMT " cells owned, the mesh has %" PetscInt_FMT " and %" PetscInt_FMT, pb->rv.N, pb->rc.N, pb->nv_global, pb->ne_global);
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteMesh(Problem *pb, OutputFields of, OutputMap *om)
+/* owned-item values (real or integer-valued) to this rank's block of rows */
+static PetscErrorCode ToBlockInt(IORows *r, PetscInt ncomp, const PetscReal *own, PetscInt *blk)
 {
-  PetscReal *X;
-  PetscInt  *nid, *conn;
+  PetscReal *b;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc3(3 * om->nvo, &X, om->nvo, &nid, 8 * pb->nc, &conn));
-  for (PetscInt r = 0; r < om->nvo; r++) {
-    for (int i = 0; i < 3; i++) X[3 * r + i] = pb->X[3 * om->vloc[r] + i];
-    nid[r] = pb->node_id[om->vloc[r]];
-  }
-  for (PetscInt k = 0; k < 8 * pb->nc; k++) conn[k] = om->gnum[pb->cv[k]];
-  PetscCall(OutputFieldsWriteMesh(of, om->nvo, om->voff, pb->nv_global, X, nid, pb->nc, om->eoff, pb->ne_global, conn, pb->elem_id));
-  PetscCall(PetscFree3(X, nid, conn));
+  PetscCall(PetscMalloc1(r->nb * ncomp + 1, &b));
+  PetscCall(IORowsToBlock(r, ncomp, own, b));
+  for (PetscInt i = 0; i < r->nb * ncomp; i++) blk[i] = (PetscInt)llround(b[i]);
+  PetscCall(PetscFree(b));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteFields(Problem *pb, OutputFields of, OutputMap *om, PetscInt step, PetscReal time)
+static PetscErrorCode WriteMesh(Problem *pb, OutputFields of)
 {
-  PetscReal         *disp, *ep, *mises, *thick;
+  PetscReal *X, *Xb, *ids, *conn;
+  PetscInt  *nidb, *eidb, *connb;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc4(3 * pb->nvo + 1, &X, 3 * pb->rv.nb + 1, &Xb, PetscMax(pb->nvo, pb->nc) + 1, &ids, 8 * pb->nc + 1, &conn));
+  PetscCall(PetscMalloc3(pb->rv.nb + 1, &nidb, pb->rc.nb + 1, &eidb, 8 * pb->rc.nb + 1, &connb));
+  for (PetscInt k = 0; k < pb->nvo; k++) {
+    for (int i = 0; i < 3; i++) X[3 * k + i] = pb->X[3 * pb->vloc[k] + i];
+    ids[k] = pb->node_id[pb->vloc[k]];
+  }
+  PetscCall(IORowsToBlock(&pb->rv, 3, X, Xb));
+  PetscCall(ToBlockInt(&pb->rv, 1, ids, nidb));
+  for (PetscInt c = 0; c < pb->nc; c++) ids[c] = pb->elem_id[c];
+  PetscCall(ToBlockInt(&pb->rc, 1, ids, eidb));
+  for (PetscInt k = 0; k < 8 * pb->nc; k++) conn[k] = pb->node_src[pb->cv[k]];
+  PetscCall(ToBlockInt(&pb->rc, 8, conn, connb));
+  PetscCall(OutputFieldsWriteMesh(of, pb->rv.nb, pb->rv.off, pb->nv_global, Xb, nidb, pb->rc.nb, pb->rc.off, pb->ne_global, connb, eidb));
+  PetscCall(PetscFree4(X, Xb, ids, conn));
+  PetscCall(PetscFree3(nidb, eidb, connb));
+  PetscFunctionReturn(0);
+}
+
+/* a field on the owned vertices (ncomp values each) or the cells, to the rank's block */
+static PetscErrorCode AddField(IORows *r, const char *name, PetscInt ncomp, const PetscReal *own, OutputField *f, PetscReal **store)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(r->nb * ncomp + 1, store));
+  PetscCall(IORowsToBlock(r, ncomp, own, *store));
+  f->name  = name;
+  f->ncomp = ncomp;
+  f->data  = *store;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteFields(Problem *pb, OutputFields of, PetscInt step, PetscReal time)
+{
+  PetscReal         *disp, *ep, *mises, *thick, *store[12];
   const PetscScalar *u;
-  OutputField        nf[1], cf[3];
-  PetscInt           ncf = 2;
+  OutputField        nf[6], cf[3];
+  PetscInt           nn = 0, ncf = 0, ns = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc4(3 * om->nvo, &disp, pb->nc, &ep, pb->nc, &mises, pb->nc, &thick));
+  PetscCall(PetscMalloc4(3 * pb->nvo + 1, &disp, pb->nc + 1, &ep, pb->nc + 1, &mises, pb->nc + 1, &thick));
   /* Uloc holds the converged displacements with the boundary values (set by the last assembly) */
   PetscCall(VecGetArrayRead(pb->Uloc, &u));
-  for (PetscInt r = 0; r < om->nvo; r++)
-    for (int i = 0; i < 3; i++) disp[3 * r + i] = PetscRealPart(u[pb->vloff[om->vloc[r]] + i]);
+  for (PetscInt k = 0; k < pb->nvo; k++)
+    for (int i = 0; i < 3; i++) disp[3 * k + i] = PetscRealPart(u[pb->vloff[pb->vloc[k]] + i]);
   PetscCall(VecRestoreArrayRead(pb->Uloc, &u));
   for (PetscInt c = 0; c < pb->nc; c++) {
     ep[c]    = pb->einfo[c].ep;
     mises[c] = pb->einfo[c].mises;
+    thick[c] = 0;
     if (pb->cs->thickness_output) {
       /* thickness strain ln(h/h0) = -ln |F^-T N| at the centroid, N the reference normal */
-      double Fi[9], v[3];
+      double        Fi[9], v[3];
       const double *N = pb->cs->thickness_dir;
       t3_inv(pb->einfo[c].F0, Fi);
       for (int i = 0; i < 3; i++) v[i] = Fi[i] * N[0] + Fi[3 + i] * N[1] + Fi[6 + i] * N[2];
       thick[c] = -log(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
     }
   }
-  nf[0].name  = "displacement";
-  nf[0].ncomp = 3;
-  nf[0].data  = disp;
-  cf[0].name  = "plastic_strain";
-  cf[0].ncomp = 1;
-  cf[0].data  = ep;
-  cf[1].name  = "von_mises";
-  cf[1].ncomp = 1;
-  cf[1].data  = mises;
-  if (pb->cs->thickness_output) {
-    cf[2].name  = "thickness_strain";
-    cf[2].ncomp = 1;
-    cf[2].data  = thick;
-    ncf         = 3;
-  }
+  PetscCall(AddField(&pb->rv, "displacement", 3, disp, &nf[nn++], &store[ns++]));
+  PetscCall(AddField(&pb->rc, "plastic_strain", 1, ep, &cf[ncf++], &store[ns++]));
+  PetscCall(AddField(&pb->rc, "von_mises", 1, mises, &cf[ncf++], &store[ns++]));
+  if (pb->cs->thickness_output) PetscCall(AddField(&pb->rc, "thickness_strain", 1, thick, &cf[ncf++], &store[ns++]));
   if (pb->ntools) {
     /* contact node fields: gap, normal force, tangential (friction) force, status, accumulated slip */
     PetscReal *cg, *cn, *ct, *cst, *csl;
-    PetscCall(PetscCalloc5(om->nvo, &cg, om->nvo, &cn, 3 * om->nvo, &ct, om->nvo, &cst, om->nvo, &csl));
+    PetscCall(PetscCalloc5(pb->nvo + 1, &cg, pb->nvo + 1, &cn, 3 * pb->nvo + 1, &ct, pb->nvo + 1, &cst, pb->nvo + 1, &csl));
+    for (PetscInt k = 0; k < pb->nvo; k++) cg[k] = pb->search;
     for (PetscInt i = 0; i < pb->ns; i++) {
       const ContactState *st = &pb->cst_c[i];
-      const PetscInt      r  = om->gnum[pb->slave[i]] - om->voff;
+      const PetscInt      r  = pb->vrow[pb->slave[i]];
       cg[r]                  = PetscIsInfReal(st->gap) ? pb->search : st->gap;
       cn[r]                  = st->tN;
       cst[r]                 = st->status;
       csl[r]                 = st->slip;
       for (int k = 0; k < 3; k++) ct[3 * r + k] = st->fT[k];
     }
-    OutputField nc[6];
-    PetscInt    nn = 0;
-    nc[nn++]       = nf[0];
-    nc[nn].name    = "contact_gap";
-    nc[nn].ncomp   = 1;
-    nc[nn++].data  = cg;
-    nc[nn].name    = "contact_normal_force";
-    nc[nn].ncomp   = 1;
-    nc[nn++].data  = cn;
-    nc[nn].name    = "contact_tangential_force";
-    nc[nn].ncomp   = 3;
-    nc[nn++].data  = ct;
-    nc[nn].name    = "contact_status";
-    nc[nn].ncomp   = 1;
-    nc[nn++].data  = cst;
-    nc[nn].name    = "contact_slip";
-    nc[nn].ncomp   = 1;
-    nc[nn++].data  = csl;
-    PetscCall(OutputFieldsWriteStep(of, step, time, nn, nc, ncf, cf));
+    PetscCall(AddField(&pb->rv, "contact_gap", 1, cg, &nf[nn++], &store[ns++]));
+    PetscCall(AddField(&pb->rv, "contact_normal_force", 1, cn, &nf[nn++], &store[ns++]));
+    PetscCall(AddField(&pb->rv, "contact_tangential_force", 3, ct, &nf[nn++], &store[ns++]));
+    PetscCall(AddField(&pb->rv, "contact_status", 1, cst, &nf[nn++], &store[ns++]));
+    PetscCall(AddField(&pb->rv, "contact_slip", 1, csl, &nf[nn++], &store[ns++]));
     PetscCall(PetscFree5(cg, cn, ct, cst, csl));
-  } else PetscCall(OutputFieldsWriteStep(of, step, time, 1, nf, ncf, cf));
+  }
+  PetscCall(OutputFieldsWriteStep(of, step, time, nn, nf, ncf, cf));
+  for (PetscInt k = 0; k < ns; k++) PetscCall(PetscFree(store[k]));
   PetscCall(PetscFree4(disp, ep, mises, thick));
   PetscFunctionReturn(0);
 }
@@ -350,6 +346,7 @@ PetscErrorCode ProblemSetUp(Problem *pb)
   PetscCall(DMCreateLocalVector(pb->dm, &pb->Uloc));
   PetscCall(VecDuplicate(pb->Uloc, &pb->Floc));
   PetscCall(ContactSetUp(pb));
+  PetscCall(OutputRowsCreate(pb));
   PetscFunctionReturn(0);
 }
 
@@ -446,7 +443,6 @@ PetscErrorCode ProblemSolve(Problem *pb)
   Vec          R, W;
   FILE        *hist = NULL, *chist = NULL;
   OutputFields of   = NULL;
-  OutputMap    om;
   PetscReal    lam_c = 0, dl = cs->load_dt0, dl_prev = 0, rhist[256];
   PetscInt     itshist[256], step = 0, total_its = 0, total_cuts = 0;
   PetscLogDouble t0, t1;
@@ -456,10 +452,9 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(OutputEnsureDirectory(pb->comm, cs->output_dir));
   PetscCall(HistoryOpen(pb, &hist));
   PetscCall(ContactHistoryOpen(pb, &chist));
-  PetscCall(OutputMapCreate(pb, &om));
   if (cs->output_interval > 0) {
     PetscCall(OutputFieldsCreate(pb->comm, cs->output_dir, &of));
-    PetscCall(WriteMesh(pb, of, &om));
+    PetscCall(WriteMesh(pb, of));
   }
 
   PetscCall(DMCreateMatrix(pb->dm, &J));
@@ -521,7 +516,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(VecZeroEntries(pb->Uc));
   PetscCall(VecZeroEntries(pb->Uprev));
   PetscCall(ProblemResidualLocal(pb, pb->U, 0.0));
-  if (of) PetscCall(WriteFields(pb, of, &om, 0, 0.0));
+  if (of) PetscCall(WriteFields(pb, of, 0, 0.0));
 
   while (lam_c < 1.0 - 1e-12) {
     SNESConvergedReason reason;
@@ -579,7 +574,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
     PetscCall(ContactHistoryWrite(pb, chist, step, lam_c, its));
     PetscCall(PetscTime(&t1));
     PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0));
-    if (of && (step % cs->output_interval == 0 || lam_c >= 1.0 - 1e-12)) PetscCall(WriteFields(pb, of, &om, step, lam_c));
+    if (of && (step % cs->output_interval == 0 || lam_c >= 1.0 - 1e-12)) PetscCall(WriteFields(pb, of, step, lam_c));
     if (its <= cs->load_grow_its) dl = PetscMin(dl * cs->load_grow, cs->load_dt_max);
   }
   PetscCall(PetscTime(&t1));
@@ -588,7 +583,6 @@ PetscErrorCode ProblemSolve(Problem *pb)
   if (hist) fclose(hist);
   if (chist) fclose(chist);
   PetscCall(OutputFieldsDestroy(&of));
-  PetscCall(PetscFree2(om.vloc, om.gnum));
   PetscCall(SNESDestroy(&snes));
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&R));
@@ -608,6 +602,9 @@ PetscErrorCode ProblemDestroy(Problem *pb)
   PetscCall(VecDestroy(&pb->Floc));
   PetscCall(PetscFree2(pb->hist_c, pb->hist_t));
   PetscCall(ContactDestroy(pb));
+  PetscCall(IORowsDestroy(&pb->rv));
+  PetscCall(IORowsDestroy(&pb->rc));
+  PetscCall(PetscFree2(pb->vloc, pb->vrow));
   PetscCall(ProblemDestroyMesh(pb));
   PetscFunctionReturn(0);
 }
