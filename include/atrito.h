@@ -56,6 +56,8 @@ typedef struct {
   /* output */
   char      output_dir[PETSC_MAX_PATH_LEN];
   PetscInt  output_interval;        /* write fields every N converged steps (0: none)  */
+  PetscInt  checkpoint_interval;    /* write DIR/checkpoint.h5 every N steps (0: none) */
+  char      restart[PETSC_MAX_PATH_LEN]; /* continue from this checkpoint            */
   PetscBool thickness_output;
   PetscReal thickness_dir[3];       /* reference sheet normal for the thickness strain */
 } Case;
@@ -144,7 +146,7 @@ typedef struct {
   PetscInt      contact_fail;  /* projections that failed in the last evaluation            */
   PetscReal     search;        /* pairing distance                                           */
 
-  PetscLogEvent ev_residual, ev_jacobian, ev_contact, ev_pairing;
+  PetscLogEvent ev_residual, ev_jacobian, ev_contact, ev_pairing, ev_output;
 } Problem;
 
 /* case.c */
@@ -160,8 +162,8 @@ PetscErrorCode ProblemSolve(Problem *pb);
 PetscErrorCode ProblemDestroy(Problem *pb);
 PetscErrorCode ProblemResidualLocal(Problem *pb, Vec U, PetscReal lambda);
 
-/* history.c: per-step CSV (rank 0), written whole rows only */
-PetscErrorCode HistoryOpen(Problem *pb, FILE **fp);
+/* history: per-step CSV (rank 0), written whole rows only; append: continue a restarted run */
+PetscErrorCode HistoryOpen(Problem *pb, FILE **fp, PetscBool append);
 PetscErrorCode HistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscReal time, PetscInt its, PetscReal r0, PetscReal r);
 PetscErrorCode ProblemReactions(Problem *pb, PetscReal (*R)[3]);
 
@@ -174,8 +176,17 @@ PetscErrorCode ContactSeed(Problem *pb, Vec Uloc_with_bc, PetscReal lambda, Pets
 /* contact contributions at the local displacements u (with boundary values) */
 PetscErrorCode ContactAssemble(Problem *pb, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v);
 PetscErrorCode ContactCommit(Problem *pb);
-PetscErrorCode ContactHistoryOpen(Problem *pb, FILE **fp);
+PetscErrorCode ContactHistoryOpen(Problem *pb, FILE **fp, PetscBool append);
 PetscErrorCode ContactHistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscReal time, PetscInt its);
+
+/* checkpoint.c */
+typedef struct {
+  PetscInt  step, total_its, total_cuts;
+  PetscReal lambda, dl, dl_prev;
+} CheckpointInfo;
+PetscErrorCode CheckpointWrite(Problem *pb, const CheckpointInfo *ci);
+PetscErrorCode CheckpointRead(Problem *pb, const char *path, CheckpointInfo *ci);
+PetscErrorCode HistoryTruncate(Problem *pb, const char *name, PetscInt step, PetscBool *existed);
 
 /* util.c */
 /* After work done on rank 0 alone (under PetscReturnErrorHandler), raise its error, with its

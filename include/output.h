@@ -29,4 +29,10 @@ PetscErrorCode OutputFieldsDestroy(OutputFields *of);
    path.tmp, fsyncs it and renames it onto path, so readers see the old or the new text. */
 PetscErrorCode OutputEnsureDirectory(MPI_Comm comm, const char *dir);
 PetscErrorCode OutputWriteTextAtomic(const char *path, const char *text);
+
+
+/* Restart: continue DIR/fields.h5 written by an earlier run of the same mesh. The steps after
+   keep_step (written after the checkpoint the run restarts from) are removed; the XDMF index is
+   rebuilt from the file. The rows of this rank: as for OutputFieldsWriteMesh. Collective. */
+PetscErrorCode OutputFieldsReopen(MPI_Comm comm, const char *dir, PetscInt keep_step, PetscInt nv_local, PetscInt v_offset, PetscInt ne_local, PetscInt e_offset, OutputFields *of);
 #endif

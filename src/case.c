@@ -258,6 +258,9 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
     PetscCall(PetscOptionsString("-output_dir", "Output directory", NULL, cs->output_dir, cs->output_dir, sizeof(cs->output_dir), NULL));
     PetscCall(PetscOptionsInt("-output_interval", "Write fields every N converged steps (0: never)", NULL, cs->output_interval, &cs->output_interval, NULL));
     PetscCheck(cs->output_interval >= 0, comm, PETSC_ERR_USER_INPUT, "-output_interval %" PetscInt_FMT " must be >= 0", cs->output_interval);
+    PetscCall(PetscOptionsInt("-checkpoint_interval", "Write DIR/checkpoint.h5 every N converged steps and at the end (0: never)", NULL, cs->checkpoint_interval, &cs->checkpoint_interval, NULL));
+    PetscCheck(cs->checkpoint_interval >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_interval %" PetscInt_FMT " must be >= 0", cs->checkpoint_interval);
+    PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint (same case; any number of ranks)", NULL, cs->restart, cs->restart, sizeof(cs->restart), NULL));
     v3[0] = 0;
     v3[1] = 0;
     v3[2] = 1;

@@ -298,7 +298,7 @@ PetscErrorCode ContactCommit(Problem *pb)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactHistoryOpen(Problem *pb, FILE **fp)
+PetscErrorCode ContactHistoryOpen(Problem *pb, FILE **fp, PetscBool append)
 {
   char path[PETSC_MAX_PATH_LEN];
 
@@ -306,9 +306,9 @@ PetscErrorCode ContactHistoryOpen(Problem *pb, FILE **fp)
   *fp = NULL;
   if (pb->rank || !pb->ntools) PetscFunctionReturn(0);
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/contact.csv", pb->cs->output_dir));
-  *fp = fopen(path, "w");
+  *fp = fopen(path, append ? "a" : "w");
   PetscCheck(*fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write '%s' (-output_dir)", path);
-  fprintf(*fp, "step,time,tool,travel,force,force_full,newton_its,active,stick,slip,max_penetration\n");
+  if (!append) fprintf(*fp, "step,time,tool,travel,force,force_full,newton_its,active,stick,slip,max_penetration\n");
   fflush(*fp);
   PetscFunctionReturn(0);
 }

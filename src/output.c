@@ -731,3 +731,139 @@ PetscErrorCode OutputFieldsDestroy(OutputFields *of)
   PetscCall(PetscFree(*of));
   PetscFunctionReturn(0);
 }
+
+/* ------------------------------------------------------------------------------------------ */
+/* Restart: continue an existing fields.h5                                                     */
+
+typedef struct {
+  OutputFields of;
+  hid_t        steps;
+  PetscInt     keep;
+  PetscInt     ndel;
+  char       (*del)[32];
+} OutputScan;
+
+/* one group of /steps: remember it (step <= keep) or mark it for deletion */
+static herr_t OutputScanStep(hid_t grp, const char *name, const H5L_info_t *info, void *ctx)
+{
+  OutputScan       *sc = (OutputScan *)ctx;
+  OutputFields      of = sc->of;
+  hid_t             g, a, d, sp, ca, at;
+  int               stepv = -1;
+  double            tv    = 0;
+  hsize_t           dims[2];
+  H5G_info_t        gi;
+  OutputStepRecord *rec;
+  (void)info;
+
+  g = H5Gopen2(grp, name, H5P_DEFAULT);
+  if (g < 0) return -1;
+  a = H5Aopen(g, "step", H5P_DEFAULT);
+  if (a < 0 || H5Aread(a, H5T_NATIVE_INT, &stepv) < 0) return -1;
+  H5Aclose(a);
+  a = H5Aopen(g, "time", H5P_DEFAULT);
+  if (a < 0 || H5Aread(a, H5T_NATIVE_DOUBLE, &tv) < 0) return -1;
+  H5Aclose(a);
+  if (stepv > sc->keep) {
+    H5Gclose(g);
+    if (sc->ndel % 64 == 0 && PetscRealloc((size_t)(sc->ndel + 64) * sizeof(*sc->del), &sc->del)) return -1;
+    snprintf(sc->del[sc->ndel++], 32, "%s", name);
+    return 0;
+  }
+  if (of->nsteps == of->maxsteps) {
+    PetscInt m = of->maxsteps ? 2 * of->maxsteps : 16;
+    if (PetscRealloc(m * sizeof(OutputStepRecord), &of->steps)) return -1;
+    of->maxsteps = m;
+  }
+  rec         = &of->steps[of->nsteps++];
+  rec->step   = stepv;
+  rec->time   = tv;
+  rec->nfield = 0;
+  if (H5Gget_info(g, &gi) < 0 || PetscCalloc1(gi.nlinks + 1, &rec->field)) return -1;
+  for (hsize_t k = 0; k < gi.nlinks; k++) {
+    char    fname[256], center[16] = "";
+    ssize_t len = H5Lget_name_by_idx(g, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, fname, sizeof(fname), H5P_DEFAULT);
+    if (len < 0) len = H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, fname, sizeof(fname), H5P_DEFAULT);
+    if (len < 0) return -1;
+    d  = H5Dopen2(g, fname, H5P_DEFAULT);
+    sp = H5Dget_space(d);
+    int nd = H5Sget_simple_extent_dims(sp, dims, NULL);
+    ca = H5Aopen(d, "center", H5P_DEFAULT);
+    at = H5Aget_type(ca);
+    if (d < 0 || sp < 0 || nd < 1 || ca < 0 || H5Aread(ca, at, center) < 0) return -1;
+    H5Tclose(at);
+    H5Aclose(ca);
+    H5Sclose(sp);
+    H5Dclose(d);
+    if (PetscStrallocpy(fname, &rec->field[rec->nfield].name)) return -1;
+    rec->field[rec->nfield].ncomp = nd == 1 ? 1 : (PetscInt)dims[1];
+    rec->field[rec->nfield].cell  = !strncmp(center, "cell", 4) ? PETSC_TRUE : PETSC_FALSE;
+    rec->nfield++;
+  }
+  H5Gclose(g);
+  return 0;
+}
+
+static int OutputStepCompare(const void *a, const void *b)
+{
+  const PetscInt x = ((const OutputStepRecord *)a)->step, y = ((const OutputStepRecord *)b)->step;
+  return (x > y) - (x < y);
+}
+
+PetscErrorCode OutputFieldsReopen(MPI_Comm comm, const char *dir, PetscInt keep_step, PetscInt nv_local, PetscInt v_offset, PetscInt ne_local, PetscInt e_offset, OutputFields *of_out)
+{
+  OutputFields o;
+  OutputScan   sc;
+  hid_t        file, d, sp;
+  hsize_t      dims[2];
+  herr_t       e;
+
+  PetscFunctionBeginUser;
+  *of_out = NULL;
+  PetscCall(PetscNew(&o));
+  PetscCallMPI(MPI_Comm_dup(comm, &o->comm));
+  PetscCallMPI(MPI_Comm_rank(o->comm, &o->rank));
+  PetscCallMPI(MPI_Comm_size(o->comm, &o->size));
+  PetscCall(PetscStrncpy(o->dir, dir, sizeof(o->dir)));
+  PetscCall(PetscSNPrintf(o->h5path, sizeof(o->h5path), "%s/%s", dir, OUTPUT_H5_NAME));
+  PetscCall(PetscSNPrintf(o->xmfpath, sizeof(o->xmfpath), "%s/%s", dir, OUTPUT_XMF_NAME));
+  PetscCall(OutputFileOpen(o, &file));
+  d = H5Dopen2(file, "/mesh/coordinates", H5P_DEFAULT);
+  OutputCheckH5(d, "HDF5: '%s' has no /mesh/coordinates: cannot continue it", o->h5path);
+  sp = H5Dget_space(d);
+  H5Sget_simple_extent_dims(sp, dims, NULL);
+  o->nv = (PetscInt)dims[0];
+  H5Sclose(sp);
+  H5Dclose(d);
+  d = H5Dopen2(file, "/mesh/hexahedra", H5P_DEFAULT);
+  OutputCheckH5(d, "HDF5: '%s' has no /mesh/hexahedra: cannot continue it", o->h5path);
+  sp = H5Dget_space(d);
+  H5Sget_simple_extent_dims(sp, dims, NULL);
+  o->ne = (PetscInt)dims[0];
+  H5Sclose(sp);
+  H5Dclose(d);
+  /* the steps up to keep_step stay; later ones (written after the checkpoint) go */
+  PetscCall(PetscMemzero(&sc, sizeof(sc)));
+  sc.of    = o;
+  sc.keep  = keep_step;
+  sc.steps = H5Gopen2(file, "/steps", H5P_DEFAULT);
+  OutputCheckH5(sc.steps, "HDF5: '%s' has no /steps: cannot continue it", o->h5path);
+  e = H5Literate(sc.steps, H5_INDEX_NAME, H5_ITER_INC, NULL, OutputScanStep, &sc);
+  OutputCheckH5(e, "HDF5: cannot read the steps of '%s'", o->h5path);
+  for (PetscInt k = 0; k < sc.ndel; k++) {
+    e = H5Ldelete(sc.steps, sc.del[k], H5P_DEFAULT);
+    OutputCheckH5(e, "HDF5: cannot remove /steps/%s from '%s'", sc.del[k], o->h5path);
+  }
+  PetscCall(PetscFree(sc.del));
+  H5Gclose(sc.steps);
+  PetscCall(OutputFileClose(o, file));
+  qsort(o->steps, (size_t)o->nsteps, sizeof(OutputStepRecord), OutputStepCompare);
+  o->nv_local     = nv_local;
+  o->v_offset     = v_offset;
+  o->ne_local     = ne_local;
+  o->e_offset     = e_offset;
+  o->mesh_written = PETSC_TRUE;
+  PetscCall(OutputWriteXdmf(o));
+  *of_out = o;
+  PetscFunctionReturn(0);
+}

@@ -167,7 +167,7 @@ PetscErrorCode ProblemReactions(Problem *pb, PetscReal (*R)[3])
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode HistoryOpen(Problem *pb, FILE **fp)
+PetscErrorCode HistoryOpen(Problem *pb, FILE **fp, PetscBool append)
 {
   char path[PETSC_MAX_PATH_LEN];
 
@@ -175,8 +175,9 @@ PetscErrorCode HistoryOpen(Problem *pb, FILE **fp)
   *fp = NULL;
   if (pb->rank) PetscFunctionReturn(0);
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/history.csv", pb->cs->output_dir));
-  *fp = fopen(path, "w");
+  *fp = fopen(path, append ? "a" : "w");
   PetscCheck(*fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write '%s' (-output_dir)", path);
+  if (append) PetscFunctionReturn(0);
   fprintf(*fp, "step,time,newton_its,residual_initial,residual_final");
   for (PetscInt b = 0; b < pb->nbc; b++) fprintf(*fp, ",%s_fx,%s_fy,%s_fz", pb->cs->bc[b].name, pb->cs->bc[b].name, pb->cs->bc[b].name);
   fprintf(*fp, "\n");
@@ -335,6 +336,7 @@ PetscErrorCode ProblemSetUp(Problem *pb)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventRegister("AtritoResidual", DM_CLASSID, &pb->ev_residual));
   PetscCall(PetscLogEventRegister("AtritoJacobian", DM_CLASSID, &pb->ev_jacobian));
+  PetscCall(PetscLogEventRegister("AtritoOutput", DM_CLASSID, &pb->ev_output));
   PetscCall(PetscMalloc2((size_t)pb->nc * HEX8_NQP * MAT_NHIST, &pb->hist_c, (size_t)pb->nc * HEX8_NQP * MAT_NHIST, &pb->hist_t));
   for (PetscInt q = 0; q < pb->nc * HEX8_NQP; q++) {
     MaterialHistoryInit(pb->hist_c + (size_t)q * MAT_NHIST);
@@ -371,13 +373,6 @@ static PetscErrorCode TangentPredictor(Problem *pb, SNES snes, Mat J, Vec R, Vec
   /* R <- W + (R - W)/eps */
   PetscCall(VecAXPBY(R, 1.0 - 1.0 / eps, 1.0 / eps, W));
   PetscCall(VecScale(R, -1.0));
-  {
-    /* full Newton steps: with penalty contact a backtracking search crawls across active-set
-       changes; a failed step is cut back instead */
-    SNESLineSearch ls;
-    PetscCall(SNESGetLineSearch(snes, &ls));
-    PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
-  }
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPSetOperators(ksp, J, J));
   PetscCall(KSPSolve(ksp, R, W));
@@ -445,16 +440,52 @@ PetscErrorCode ProblemSolve(Problem *pb)
   OutputFields of   = NULL;
   PetscReal    lam_c = 0, dl = cs->load_dt0, dl_prev = 0, rhist[256];
   PetscInt     itshist[256], step = 0, total_its = 0, total_cuts = 0;
+  CheckpointInfo ci;
   PetscLogDouble t0, t1;
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(OutputEnsureDirectory(pb->comm, cs->output_dir));
-  PetscCall(HistoryOpen(pb, &hist));
-  PetscCall(ContactHistoryOpen(pb, &chist));
-  if (cs->output_interval > 0) {
-    PetscCall(OutputFieldsCreate(pb->comm, cs->output_dir, &of));
-    PetscCall(WriteMesh(pb, of));
+  if (cs->restart[0]) {
+    /* continue: the committed state of the checkpoint; the histories and fields keep what was
+       written up to its step and go on from there */
+    PetscBool hexist, cexist, fexist;
+    PetscCall(CheckpointRead(pb, cs->restart, &ci));
+    step       = ci.step;
+    lam_c      = ci.lambda;
+    dl         = ci.dl;
+    dl_prev    = ci.dl_prev;
+    total_its  = ci.total_its;
+    total_cuts = ci.total_cuts;
+    PetscCall(HistoryTruncate(pb, "history.csv", step, &hexist));
+    PetscCall(HistoryTruncate(pb, "contact.csv", step, &cexist));
+    PetscCall(HistoryOpen(pb, &hist, hexist));
+    PetscCall(ContactHistoryOpen(pb, &chist, cexist));
+    if (cs->output_interval > 0) {
+      char h5[PETSC_MAX_PATH_LEN];
+      int  ex = 0;
+      PetscCall(PetscSNPrintf(h5, sizeof(h5), "%s/fields.h5", cs->output_dir));
+      if (!pb->rank) {
+        FILE *fp = fopen(h5, "r");
+        ex       = fp != NULL;
+        if (fp) fclose(fp);
+      }
+      PetscCallMPI(MPI_Bcast(&ex, 1, MPI_INT, 0, pb->comm));
+      fexist = ex ? PETSC_TRUE : PETSC_FALSE;
+      if (fexist) PetscCall(OutputFieldsReopen(pb->comm, cs->output_dir, step, pb->rv.nb, pb->rv.off, pb->rc.nb, pb->rc.off, &of));
+      else {
+        PetscCall(OutputFieldsCreate(pb->comm, cs->output_dir, &of));
+        PetscCall(WriteMesh(pb, of));
+      }
+    }
+    PetscCall(PetscPrintf(pb->comm, "restart from %s: step %" PetscInt_FMT ", load %.6g\n", cs->restart, step, (double)lam_c));
+  } else {
+    PetscCall(HistoryOpen(pb, &hist, PETSC_FALSE));
+    PetscCall(ContactHistoryOpen(pb, &chist, PETSC_FALSE));
+    if (cs->output_interval > 0) {
+      PetscCall(OutputFieldsCreate(pb->comm, cs->output_dir, &of));
+      PetscCall(WriteMesh(pb, of));
+    }
   }
 
   PetscCall(DMCreateMatrix(pb->dm, &J));
@@ -512,11 +543,13 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(SNESSetFromOptions(snes));
 
   /* the initial state */
-  PetscCall(VecZeroEntries(pb->U));
-  PetscCall(VecZeroEntries(pb->Uc));
-  PetscCall(VecZeroEntries(pb->Uprev));
-  PetscCall(ProblemResidualLocal(pb, pb->U, 0.0));
-  if (of) PetscCall(WriteFields(pb, of, 0, 0.0));
+  if (!cs->restart[0]) {
+    PetscCall(VecZeroEntries(pb->U));
+    PetscCall(VecZeroEntries(pb->Uc));
+    PetscCall(VecZeroEntries(pb->Uprev));
+    PetscCall(ProblemResidualLocal(pb, pb->U, 0.0));
+    if (of) PetscCall(WriteFields(pb, of, 0, 0.0));
+  } else PetscCall(VecCopy(pb->Uc, pb->U));
 
   while (lam_c < 1.0 - 1e-12) {
     SNESConvergedReason reason;
@@ -529,6 +562,9 @@ PetscErrorCode ProblemSolve(Problem *pb)
       lam_t = (1.0 - lam_c - dl < 1e-12) ? 1.0 : lam_c + dl; /* the last step ends exactly at 1 */
       pb->lambda = lam_t;
       PetscCall(VecCopy(pb->Uc, pb->U));
+      /* a fresh factorisation (analysis and scaling) for every step, so that a step depends only
+         on the committed state: a run restarted from a checkpoint repeats the same iterations */
+      PetscCall(PCReset(pc));
       /* frame seeds from the committed state (a retry starts again from the committed frames) */
       PetscCall(LocalWithBC(pb, pb->Uc, lam_c));
       PetscCall(ContactSeed(pb, pb->Uloc, lam_c, PETSC_TRUE));
@@ -576,6 +612,15 @@ PetscErrorCode ProblemSolve(Problem *pb)
     PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0));
     if (of && (step % cs->output_interval == 0 || lam_c >= 1.0 - 1e-12)) PetscCall(WriteFields(pb, of, step, lam_c));
     if (its <= cs->load_grow_its) dl = PetscMin(dl * cs->load_grow, cs->load_dt_max);
+    if (cs->checkpoint_interval > 0 && (step % cs->checkpoint_interval == 0 || lam_c >= 1.0 - 1e-12)) {
+      ci.step       = step;
+      ci.lambda     = lam_c;
+      ci.dl         = dl;
+      ci.dl_prev    = dl_prev;
+      ci.total_its  = total_its;
+      ci.total_cuts = total_cuts;
+      PetscCall(CheckpointWrite(pb, &ci));
+    }
   }
   PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(pb->comm, "done: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " cuts, %.2f s\n", step, total_its, total_cuts, t1 - t0));
