@@ -187,8 +187,8 @@ static PetscErrorCode Transfer(Problem *pb, hid_t file, PetscBool write, Checkpo
   }
   for (int k = 0; k < 10; k++) PetscCall(Attr(file, names[k], write, &a[k], path));
   if (!write) {
-    PetscCheck(a[0] == CKPT_VERSION, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: checkpoint format %g, this program reads format %d", path, a[0], CKPT_VERSION);
-    PetscCheck(a[7] == pb->nv_global && a[8] == pb->ne_global && a[9] == nsg, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint has %g vertices, %g cells and %g slave nodes, this case %" PetscInt_FMT ", %" PetscInt_FMT " and %" PetscInt_FMT " (not the same mesh or case)", path, a[7], a[8], a[9], pb->nv_global, pb->ne_global, nsg);
+    PetscCheck(a[0] == CKPT_VERSION, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: checkpoint format %d, this program reads format %d", path, (int)a[0], CKPT_VERSION);
+    PetscCheck(a[7] == pb->nv_global && a[8] == pb->ne_global && a[9] == nsg, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint has %" PetscInt_FMT " vertices, %" PetscInt_FMT " cells and %" PetscInt_FMT " slave nodes, this case %" PetscInt_FMT ", %" PetscInt_FMT " and %" PetscInt_FMT " (not the same mesh or case)", path, (PetscInt)a[7], (PetscInt)a[8], (PetscInt)a[9], pb->nv_global, pb->ne_global, nsg);
     ci->step       = (PetscInt)a[1];
     ci->lambda     = a[2];
     ci->dl         = a[3];

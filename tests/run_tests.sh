@@ -35,6 +35,7 @@ run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
 run solver          bash tests/test_solver.sh
 run contact         bash tests/test_contact.sh
 run benchmark       bash tests/test_benchmark.sh
+run restart         bash tests/test_restart.sh
 run bad-input       bash tests/test_bad_input.sh
 
 echo "$pass passed, $fail failed"
