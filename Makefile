@@ -19,7 +19,7 @@ TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(TEST_SRC:tests/%.c=bin/%)
 DEPS_STAMP := build/.deps-ok
 
-.PHONY: all deps run check bench clean
+.PHONY: all deps run check bench clean sanitize
 all: bin/atrito $(TEST_BIN)
 
 $(DEPS_STAMP):
@@ -43,6 +43,17 @@ bin/test_%: tests/test_%.c tests/testutil.h build/lib.a $(wildcard include/*.h)
 	@mkdir -p bin
 	$(CC) $(CPPFLAGS) $(CFLAGS) $< build/lib.a -o $@ $(LDLIBS)
 
+# the unit-test programs with AddressSanitizer and UndefinedBehaviorSanitizer (tests/test_memory.sh)
+SAN_FLAGS := -O1 -g -std=c11 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+SAN_OBJ   := $(LIB_SRC:src/%.c=build-san/%.o)
+build-san/%.o: src/%.c $(wildcard include/*.h) | $(DEPS_STAMP)
+	@mkdir -p build-san
+	$(CC) $(CPPFLAGS) $(SAN_FLAGS) -c $< -o $@
+bin-san/test_%: tests/test_%.c tests/testutil.h $(SAN_OBJ)
+	@mkdir -p bin-san
+	$(CC) $(CPPFLAGS) $(SAN_FLAGS) $< $(SAN_OBJ) -o $@ $(LDLIBS)
+sanitize: $(TEST_BIN:bin/%=bin-san/%)
+
 run: deps all
 	@bash scripts/run-main.sh
 
@@ -53,4 +64,4 @@ bench: deps all
 	@PYTHON=$(PYTHON) bash scripts/bench_assembly.sh
 
 clean:
-	rm -rf build bin
+	rm -rf build bin build-san bin-san

@@ -550,6 +550,12 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
     A(HEADING + "\n")
     A(f"Written by `scripts/bench_assembly.py` on {mi['date']} (total script time {t_total / 60:.1f} min); "
       "rerun it to regenerate this section (`/usr/bin/python3 scripts/bench_assembly.py`).\n")
+    allrecs = [r for recs in list(results.values()) + list(par.values()) for r in recs]
+    nover = sum(1 for (c, v), recs in results.items() for r in recs if r["other"] is not None and r["other"] > free_threshold(1))
+    nover += sum(1 for recs in par.values() for r in recs if r["other"] is not None and r["other"] > free_threshold(par_cfg[1]))
+    if 3 * nover > len(allrecs):
+        A(f"**Caution:** {nover} of the {len(allrecs)} runs shared a core with other processes (see the last column of "
+          "the first table and the notes); their figures are too low. Rerun the script on a quiet machine.\n")
     A("### Machine and software\n")
     A(f"- CPU: {mi['cpu']}, {mi['cores']} cores visible to the OS, {mi['mem']} memory, Linux {mi['kernel']}")
     A(f"- Compiler: `mpicc` → {mi['cc']}; flags `{kern['compile'].split(' ', 1)[1]}` (from the Makefile)")

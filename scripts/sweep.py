@@ -25,7 +25,8 @@
 --timeout S               wall-clock limit per run (default: none); a run over it is killed.
 --force                   rerun even the runs already complete. --dry-run: print the commands.
 --no-snapshot             run bin/atrito itself rather than a private copy taken at the start
-                          (the copy keeps a rebuild during the sweep from mixing binaries).
+                          (OUT/.atrito_bin_*/, removed at the end; it keeps a rebuild during the
+                          sweep from mixing binaries).
 
 Each run has its own directory OUT/<name>, the name made of the swept values
 (e.g. contact_friction=0.1__contact_penalty_normal=1e5), holding the run's outputs, its log
@@ -458,11 +459,12 @@ def describe(r):
     return s
 
 
-def snapshot_binary(path, wait=120.0):
+def snapshot_binary(path, where, wait=120.0):
     """a private copy of the program, once it exists and has not changed for a few seconds
-    (others may be rebuilding the tree)"""
+    (others may be rebuilding the tree); in the sweep's directory, so that ranks on other nodes
+    of a cluster allocation see it too"""
     t0 = time.time()
-    d = tempfile.mkdtemp(prefix="atrito_sweep_")
+    d = tempfile.mkdtemp(prefix=".atrito_bin_", dir=where)
     while True:
         try:
             st = os.stat(path)
@@ -652,7 +654,7 @@ def main():
         if not os.access(binary, os.X_OK):
             sys.exit(f"sweep: {binary} is missing (run make)")
     else:
-        binary, tmpdir = snapshot_binary(os.path.abspath(a.bin))
+        binary, tmpdir = snapshot_binary(os.path.abspath(a.bin), a.out)
     sw = Sweep(a, binary)
     for r in runs:
         r["cmd"] = sw.command(r)

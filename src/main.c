@@ -78,6 +78,7 @@ int main(int argc, char **argv)
   if (!traceback) PetscPushErrorHandler(OneLineErrorHandler, NULL);
   ierr = Run();
   if (!ierr) ierr = ReportUnusedOptions();
+  if (!traceback) PetscPopErrorHandler();
   PetscFinalize();
   return ierr ? 1 : 0;
 }

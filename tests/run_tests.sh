@@ -37,6 +37,7 @@ run contact         bash tests/test_contact.sh
 run benchmark       bash tests/test_benchmark.sh
 run restart         bash tests/test_restart.sh
 run bad-input       bash tests/test_bad_input.sh
+run memory          bash tests/test_memory.sh
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

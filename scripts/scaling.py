@@ -1,0 +1,594 @@
+#!/usr/bin/python3
+"""Strong and weak parallel scaling of atrito from PETSc's -log_view, and the section
+"## Parallel scaling" of doc/performance.md.
+
+  /usr/bin/python3 scripts/scaling.py [--max-ranks N | --ranks 1,2,4] [--repeat 3]
+      [--only strong|weak] [--strong-case FILE] [--strong-args "..."] [--weak-case FILE]
+      [--weak-cells NX,NY,NZ] [--weak-args "..."] [--launcher "mpiexec ... -n {np}"]
+      [--doc doc/performance.md | --no-doc] [--out out/scaling] [--timeout S]
+
+Strong scaling: one fixed problem at 1, 2, 4, ... ranks up to --max-ranks (default: the number
+of cores; the maximum itself is included when it is not a power of two). Default: the refined
+hemispherical punch with friction and analytic tools, shortened to 10 mm of punch travel in
+10 steps of 1 mm (cases/hemisphere_friction_analytic_refined.opts -tool_punch_motion 0,0,10
+-load_steps 10 -load_dt_max 0.1).
+
+Weak scaling: the clamped beam (cases/clamped_beam.opts) meshed with --weak-cells per rank: at p
+ranks the box is refined by the prime factors of p, each applied to the axis refined least so far
+(x first), so that the cells per rank stay constant and the elements keep their shape within a
+factor 2 (p = 2: 2 NX x NY x NZ; p = 4: 2 NX x 2 NY x NZ; p = 8: 2 NX x 2 NY x 2 NZ). The geometry
+and the loading are those of the case.
+
+Every run adds -log_view -output_interval 0 (no field output). Parsed per run: the maximum over
+ranks of the times of the events AtritoResidual, AtritoJacobian, AtritoContact, SNESSolve,
+KSPSolve, MatLUFactorNum (and their max/min ratio over ranks), the total ("Time (sec):", max over
+ranks), the steps, Newton iterations and cuts of the final "done:" line. Each configuration is run
+--repeat times (the repetitions interleaved, so a disturbance does not hit one configuration
+only); the tables give medians. Speedup S(p) = T(p0)/T(p), efficiency E(p) = S(p) p0/p for strong
+scaling (p0 the smallest rank count, normally 1), E(p) = T(p0)/T(p) for weak scaling. The load
+that other processes put on the machine during each run is measured from /proc/stat (busy CPU
+time of the machine minus that of the runs).
+
+The raw outputs go to OUT/<strong|weak>_np<p>_rep<k>.log. The section "## Parallel scaling" of
+--doc is replaced (from its heading to the next "## " heading or the end of the file) or appended;
+every other section is kept as it is. Only the Python standard library is used.
+"""
+import argparse
+import datetime
+import os
+import re
+import resource
+import shlex
+import shutil
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+HEADING = "## Parallel scaling"
+EVENTS = ["SNESSolve", "AtritoResidual", "AtritoJacobian", "AtritoContact", "KSPSolve", "MatLUFactorNum"]
+STRONG_CASE = "cases/hemisphere_friction_analytic_refined.opts"
+STRONG_ARGS = "-tool_punch_motion 0,0,10 -load_steps 10 -load_dt_max 0.1"
+WEAK_CASE = "cases/clamped_beam.opts"
+WEAK_CELLS = "32,8,8"
+WEAK_ARGS = ""
+DEFAULT_LAUNCHER = "mpiexec --oversubscribe --bind-to none -n {np}"
+
+TOTAL_RE = re.compile(r"^Time \(sec\):\s+([\d.eE+-]+)\s+([\d.eE+-]+)", re.M)
+DONE_RE = re.compile(r"done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([0-9.eE+-]+) s")
+ERROR_RE = re.compile(r"atrito: error: (.*)")
+MESH_RE = re.compile(r"mesh:\s+(\d+) vertices,\s+(\d+) hexahedra[^\n]*?cells per rank:\s*([^\n]*)")
+PETSC_RE = re.compile(r"Petsc Release Version ([\d.]+)")
+
+
+def log(msg):
+    print(f"[scaling {time.strftime('%H:%M:%S')}] {msg}", file=sys.stderr, flush=True)
+
+
+def event_re(name):
+    # Event  Count(max) ratio  Time(max) ratio  ...   (first occurrence: the main stage)
+    return re.compile(r"^" + re.escape(name) + r"\s+(\d+)\s+([\d.]+)\s+([\d.eE+-]+)\s+([\d.]+)", re.M)
+
+
+EVENT_RES = {e: event_re(e) for e in EVENTS}
+
+
+def sh(cmd):
+    try:
+        return subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, timeout=60).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return ""
+
+
+def run_env():
+    env = dict(os.environ)
+    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    return env
+
+
+# ------------------------------------------------------------------------------------ machine load
+def cpu_busy_seconds():
+    try:
+        with open("/proc/stat") as f:
+            v = [int(x) for x in f.readline().split()[1:]]
+    except (OSError, ValueError):
+        return None
+    busy = v[0] + v[1] + v[2] + (v[5] if len(v) > 5 else 0) + (v[6] if len(v) > 6 else 0)
+    return busy / os.sysconf("SC_CLK_TCK")
+
+
+def children_cpu():
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+def machine_info():
+    info = {}
+    cpu = ""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    info["cpu"] = cpu or "unknown"
+    info["cores"] = os.cpu_count() or 1
+    lscpu = sh(["lscpu"])
+    m = re.search(r"Thread\(s\) per core:\s+(\d+)", lscpu)
+    info["threads_per_core"] = int(m.group(1)) if m else None
+    try:
+        with open("/proc/meminfo") as f:
+            kb = int(re.search(r"MemTotal:\s+(\d+)", f.read()).group(1))
+        info["mem"] = f"{kb / 1024**2:.1f} GiB"
+    except (OSError, AttributeError):
+        info["mem"] = "unknown"
+    info["mpi"] = (sh(["mpiexec", "--version"]).splitlines() or ["unknown"])[0]
+    info["kernel"] = sh(["uname", "-r"])
+    info["commit"] = sh(["git", "rev-parse", "--short", "HEAD"]) or "unknown"
+    dirty = sh(["git", "status", "--porcelain", "--", "src", "include", "Makefile"])
+    info["dirty"] = [l[3:] for l in dirty.splitlines() if len(l) > 3]
+    info["date"] = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    info["virt"] = "KVM virtual machine" if "KVM" in lscpu else ""
+    return info
+
+
+# ------------------------------------------------------------------------------------ runs
+def snapshot_binary(path, where, wait=180.0):
+    """private copy of the program (others may rebuild the tree meanwhile)"""
+    t0 = time.time()
+    d = tempfile.mkdtemp(prefix=".atrito_bin_", dir=where)
+    while True:
+        try:
+            st = os.stat(path)
+            if time.time() - st.st_mtime > 3 and st.st_size > 0:
+                dst = os.path.join(d, "atrito")
+                shutil.copy2(path, dst)
+                if os.stat(path).st_mtime == st.st_mtime:
+                    r = subprocess.run([dst, "-help", "intro"], env=run_env(), capture_output=True, timeout=60)
+                    if r.returncode == 0:
+                        return dst, d, st.st_mtime
+        except (OSError, subprocess.SubprocessError):
+            pass
+        if time.time() - t0 > wait:
+            shutil.rmtree(d, ignore_errors=True)
+            sys.exit(f"scaling: {path} is missing or keeps changing (run make)")
+        log(f"waiting for {path} (missing or being rebuilt)")
+        time.sleep(5)
+
+
+def weak_cells(base, p):
+    """base cells refined by the prime factors of p, each on the axis refined least so far"""
+    fac, n, f = [], p, 2
+    while n > 1:
+        while n % f == 0:
+            fac.append(f)
+            n //= f
+        f += 1
+    mult = [1, 1, 1]
+    for f in sorted(fac, reverse=True):
+        k = min(range(3), key=lambda i: mult[i])
+        mult[k] *= f
+    return [b * m for b, m in zip(base, mult)]
+
+
+def parse(out):
+    rec = dict(events={}, total=None, done=None, error=None, cells=None, per_rank=None, petsc=None)
+    for e, rx in EVENT_RES.items():
+        m = rx.search(out)
+        if m:
+            rec["events"][e] = dict(count=int(m.group(1)), tmax=float(m.group(3)), ratio=float(m.group(4)))
+    m = TOTAL_RE.search(out)
+    if m:
+        rec["total"] = float(m.group(1))
+        rec["total_ratio"] = float(m.group(2))
+    m = DONE_RE.search(out)
+    if m:
+        rec["done"] = dict(steps=int(m.group(1)), its=int(m.group(2)), cuts=int(m.group(3)), time=float(m.group(4)))
+    m = ERROR_RE.search(out)
+    if m:
+        rec["error"] = m.group(1).strip()
+    m = MESH_RE.search(out)
+    if m:
+        rec["cells"] = int(m.group(2))
+        rec["per_rank"] = m.group(3).strip()
+    m = PETSC_RE.search(out)
+    if m:
+        rec["petsc"] = m.group(1)
+    return rec
+
+
+class Runner:
+    def __init__(self, a, binary):
+        self.a, self.binary = a, binary
+        self.proc = None
+
+    def command(self, p, case, args, outdir):
+        launcher = [t.replace("{np}", str(p)) for t in shlex.split(self.a.launcher)]
+        return launcher + [self.binary, "-options_file", case] + args + ["-output_interval", "0", "-output_dir", outdir, "-log_view"]
+
+    def run(self, kind, p, rep, case, args):
+        outdir = tempfile.mkdtemp(prefix=f"{kind}_np{p}_", dir=self.a.out)
+        cmd = self.command(p, case, args, outdir)
+        b0, c0, t0 = cpu_busy_seconds(), children_cpu(), time.monotonic()
+        status = "ok"
+        try:
+            self.proc = subprocess.Popen(cmd, cwd=ROOT, env=run_env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                         stdin=subprocess.DEVNULL, text=True, start_new_session=True)
+            out, _ = self.proc.communicate(timeout=self.a.timeout)
+            rc = self.proc.returncode
+        except subprocess.TimeoutExpired:
+            kill_tree(self.proc)
+            out, _ = self.proc.communicate()
+            rc, status = None, "timeout"
+        finally:
+            self.proc = None
+        wall = time.monotonic() - t0
+        b1, c1 = cpu_busy_seconds(), children_cpu()
+        other = max(0.0, ((b1 - b0) - (c1 - c0)) / wall) if b0 is not None and wall > 0 else None
+        shutil.rmtree(outdir, ignore_errors=True)
+        shown = [os.path.relpath(self.a.bin, ROOT) if x == self.binary else x for x in cmd]
+        shown = [x if x != outdir else "OUTDIR" for x in shown]
+        with open(os.path.join(self.a.out, f"{kind}_np{p}_rep{rep}.log"), "w") as f:
+            f.write("# " + shlex.join(shown) + "\n" + out)
+        rec = parse(out)
+        if status == "ok" and (rc != 0 or rec["done"] is None or rec["total"] is None):
+            status = "failed"
+        rec.update(kind=kind, p=p, rep=rep, wall=wall, other=other, status=status, rc=rc, cmd=shown)
+        d = rec["done"] or {}
+        log(f"{kind} {p} rank(s), rep {rep + 1}: {status}"
+            + (f", {rec['cells']} cells, {d.get('steps')} steps, {d.get('its')} Newton its, total {rec['total']:.2f} s" if status == "ok" else
+               f" ({rec['error'] or 'exit ' + str(rc)})")
+            + (f", other load {other:.2f} cores" if other is not None else ""))
+        return rec
+
+
+def kill_tree(p):
+    """SIGTERM then SIGKILL to the launcher's group and its descendants (MPI ranks have groups of their own)"""
+    if p is None or p.poll() is not None:
+        return
+    kids = {}
+    for e in os.listdir("/proc"):
+        if e.isdigit():
+            try:
+                with open(f"/proc/{e}/stat") as f:
+                    kids.setdefault(int(f.read().rsplit(")", 1)[1].split()[1]), []).append(int(e))
+            except (OSError, ValueError, IndexError):
+                pass
+    pids, todo = [], [p.pid]
+    while todo:
+        q = todo.pop()
+        for c in kids.get(q, []):
+            pids.append(c)
+            todo.append(c)
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        for q in [p.pid] + pids:
+            try:
+                os.killpg(q, sig) if q == p.pid else os.kill(q, sig)
+            except (ProcessLookupError, PermissionError):
+                pass
+        try:
+            p.wait(5)
+            if sig == signal.SIGTERM:
+                time.sleep(0.5)
+        except subprocess.TimeoutExpired:
+            pass
+
+
+# ------------------------------------------------------------------------------------ analysis
+def med(vals):
+    vals = [v for v in vals if v is not None]
+    return statistics.median(vals) if vals else None
+
+
+def aggregate(recs):
+    """per rank count: medians of the total, of each event's max time and ratio, of wall, load"""
+    out = {}
+    for p in sorted({r["p"] for r in recs}):
+        rs = [r for r in recs if r["p"] == p and r["status"] == "ok"]
+        allr = [r for r in recs if r["p"] == p]
+        g = dict(p=p, n=len(rs), nfail=len(allr) - len(rs), recs=allr)
+        if rs:
+            g["total"] = med([r["total"] for r in rs])
+            g["tmin"] = min(r["total"] for r in rs)
+            g["tmaxr"] = max(r["total"] for r in rs)
+            g["events"] = {e: med([r["events"].get(e, {}).get("tmax") for r in rs]) for e in EVENTS}
+            g["ratios"] = {e: med([r["events"].get(e, {}).get("ratio") for r in rs]) for e in EVENTS}
+            g["counts"] = {e: med([r["events"].get(e, {}).get("count") for r in rs]) for e in EVENTS}
+            g["its"] = sorted({r["done"]["its"] for r in rs})
+            g["steps"] = sorted({r["done"]["steps"] for r in rs})
+            g["cuts"] = sorted({r["done"]["cuts"] for r in rs})
+            g["cells"] = rs[0]["cells"]
+            g["per_rank"] = rs[0]["per_rank"]
+            g["wall"] = med([r["wall"] for r in rs])
+            g["other_max"] = max([r["other"] for r in rs if r["other"] is not None] or [0.0])
+            g["other_med"] = med([r["other"] for r in rs])
+            g["t_per_it"] = med([r["total"] / r["done"]["its"] for r in rs if r["done"]["its"]])
+        out[p] = g
+    return out
+
+
+def f2(x, spec="{:.2f}"):
+    return "–" if x is None else spec.format(x)
+
+
+def ints(v):
+    return "/".join(str(x) for x in v) if v else "–"
+
+
+def speed(kind, t0, p0, t, p):
+    if t0 is None or t is None or t <= 0:
+        return None, None
+    if kind == "strong":
+        s = t0 / t
+        return s, s * p0 / p
+    return None, t0 / t
+
+
+def write_section(path, body):
+    text = ""
+    if os.path.exists(path):
+        with open(path) as f:
+            text = f.read()
+    lines = text.splitlines(keepends=True)
+    start = next((i for i, l in enumerate(lines) if l.rstrip() == HEADING), None)
+    if start is None:
+        new = ("# Performance\n\n" + body) if not text.strip() else text.rstrip("\n") + "\n\n" + body
+    else:
+        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
+        tail = "".join(lines[end:])
+        new = "".join(lines[:start]) + body + ("\n" + tail if tail else "")
+    tmp = path + ".scaling.tmp"
+    with open(tmp, "w") as f:
+        f.write(new)
+    os.replace(tmp, path)
+
+
+def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, cmdline):
+    L = []
+    A = L.append
+    A(HEADING + "\n")
+    A(f"Written by `scripts/scaling.py` on {mi['date']} (total script time {t_total / 60:.1f} min); rerun it to "
+      f"regenerate this section (`{cmdline}`).\n")
+    A("### Machine\n")
+    tpc = f", {mi['threads_per_core']} thread(s) per core" if mi["threads_per_core"] else ""
+    A(f"- CPU: {mi['cpu']}, {mi['cores']} cores visible to the OS{tpc}"
+      + (f" ({mi['virt']})" if mi["virt"] else "") + f", {mi['mem']} memory, Linux {mi['kernel']}")
+    A(f"- PETSc {petsc or 'unknown'}, LU by MUMPS (the code's default solver), `OPENBLAS_NUM_THREADS=1`; MPI: {mi['mpi']}; "
+      f"launcher `{a.launcher}`")
+    A(f"- Code: commit `{mi['commit']}`" + (f"; uncommitted changes in {', '.join('`' + d + '`' for d in mi['dirty'])}" if mi["dirty"] else "")
+      + f"; `bin/atrito` built {time.strftime('%Y-%m-%d %H:%M', time.localtime(bin_mtime))} (a private copy was run)")
+    A(f"- Load average (1 min) before / after: {load0:.2f} / {load1:.2f}.")
+    A("")
+    ncores = mi["cores"]
+    if ncores <= 2:
+        A(f"**This machine has {ncores} cores: only 1 and 2 ranks are meaningful here.** More ranks than cores would share "
+          "cores and measure time slicing, not parallel scaling. Other jobs were running on the machine at the same time "
+          "(last column of the tables, in cores): a 2-rank run that shares its cores with another process is slowed "
+          "directly, so the 2-rank figures are lower bounds of what two free cores give. Use the script on a cluster node "
+          "(`--max-ranks`, `--launcher \"srun -n {np}\"`) for real scaling curves.\n")
+    else:
+        A(f"This machine has {ncores} cores; rank counts up to {ncores} were measured.\n")
+
+    A("### Method\n")
+    A(f"- Strong scaling: `{os.path.relpath(a.strong_case, ROOT)} {a.strong_args}` — the refined hemispherical punch "
+      "with friction (μ = 0.15) and analytic tools, shortened to the first part of the punch travel; the same problem on every rank count.")
+    weak_cmd = f"{os.path.relpath(a.weak_case, ROOT)} -box_cells NX,NY,NZ" + (f" {a.weak_args}" if a.weak_args else "")
+    A(f"- Weak scaling: `{weak_cmd}` — the clamped beam (8 × 2 × 2, clamped at x = 0, tip sheared and pulled, Swift "
+      f"plasticity), {a.weak_cells_str} cells per rank: at p ranks the box is refined by the prime factors of p, each on "
+      "the axis refined least so far (2 ranks: NX doubled), so the cells per rank stay constant; geometry and loading unchanged.")
+    A("- Every run: `-log_view -output_interval 0` (no field output). Times are PETSc's event times, the maximum over "
+      "the ranks; \"total\" is the `Time (sec):` line (the whole run: mesh, setup, all load steps). `AtritoResidual` "
+      "and `AtritoJacobian` are the assemblies (element kernels with the return maps, insertion, final assembly); "
+      "`AtritoContact` is the contact part, nested inside them (zero for the beam); `MatLUFactorNum` the MUMPS "
+      "numerical factorisations; `KSPSolve` the solves proper (the factorisation is logged apart, under `PCSetUp`); "
+      "`SNESSolve` all Newton iterations (assembly, factorisation, solves, line search, contact).")
+    A(f"- {a.repeat} repetition(s) per configuration, interleaved; medians. Strong: speedup S = T(1)/T(p), "
+      "efficiency E = S/p. Weak: E = T(1)/T(p). \"Other load\": busy CPU of the whole machine minus that of the run, "
+      "per second of the run, in cores (/proc/stat).")
+    A("")
+
+    def table(kind, agg):
+        if not agg:
+            return
+        ps = sorted(agg)
+        p0 = ps[0]
+        g0 = agg[p0]
+        A("| ranks | cells | cells per rank | steps | Newton its | total s median [min – max] | "
+          + ("speedup | efficiency | " if kind == "strong" else "s per Newton it | efficiency | ")
+          + " | ".join(f"{e} s" for e in EVENTS) + " | other load, cores (max) |")
+        ncol = 9 + len(EVENTS)
+        A("|" + "---|" * ncol)
+        for p in ps:
+            g = agg[p]
+            if not g["n"]:
+                A(f"| {p} | all {g['nfail']} runs failed |" + " – |" * (ncol - 2))
+                continue
+            s, e = speed(kind, g0.get("total"), p0, g["total"], p)
+            mid = (f"{f2(s)} | {f2(e, '{:.0%}')} | " if kind == "strong" else f"{f2(g['t_per_it'], '{:.3f}')} | {f2(e, '{:.0%}')} | ")
+            A(f"| {p} | {g['cells']:,} | {g['cells'] / p:,.0f} | {ints(g['steps'])} | {ints(g['its'])} | "
+              f"{f2(g['total'])} [{f2(g['tmin'])} – {f2(g['tmaxr'])}] | " + mid
+              + " | ".join(f2(g["events"][ev], "{:.3f}") for ev in EVENTS) + f" | {f2(g['other_max'])} |")
+        A("")
+        if len(ps) > 1:
+            A("Per event: " + ("speedup T(1)/T(p) and efficiency" if kind == "strong" else "efficiency T(1)/T(p)")
+              + ", and the max/min ratio of the event's time over the ranks (load imbalance; 1 = balanced):\n")
+            A("| event | " + " | ".join(f"{p} ranks" for p in ps[1:]) + " | max/min over ranks at " + f"{ps[-1]} ranks |")
+            A("|---|" + "---|" * (len(ps) - 1) + "---|")
+            for ev in ["total"] + EVENTS:
+                cells = []
+                for p in ps[1:]:
+                    t0 = g0.get("total") if ev == "total" else (g0.get("events") or {}).get(ev)
+                    t = agg[p].get("total") if ev == "total" else (agg[p].get("events") or {}).get(ev)
+                    if not t0 or not t or (ev != "total" and t0 < 1e-3):
+                        cells.append("–")
+                        continue
+                    s, e = speed(kind, t0, p0, t, p)
+                    cells.append(f"{s:.2f} ({e:.0%})" if kind == "strong" else f"{e:.0%}")
+                r = agg[ps[-1]].get("total_ratio") if ev == "total" else (agg[ps[-1]].get("ratios") or {}).get(ev)
+                A(f"| {ev} | " + " | ".join(cells) + f" | {f2(r)} |")
+            A("")
+
+    if strong is not None:
+        A("### Strong scaling (fixed problem)\n")
+        table("strong", strong)
+    if weak is not None:
+        A("### Weak scaling (constant cells per rank)\n")
+        table("weak", weak)
+
+    A("### Observations\n")
+    obs = observations(strong, weak, ncores)
+    for o in obs:
+        A(f"- {o}")
+    fails = [r for r in recs if r["status"] != "ok"]
+    if fails:
+        A(f"- {len(fails)} run(s) did not complete and are left out of the medians: "
+          + "; ".join(f"{r['kind']} {r['p']} ranks rep {r['rep'] + 1}: {r['status']} ({r['error'] or 'exit ' + str(r['rc'])})" for r in fails) + ".")
+    A("- Raw `-log_view` outputs: `out/scaling/<strong|weak>_np<p>_rep<k>.log` (not in the repository).")
+    A("")
+    return "\n".join(L) + "\n"
+
+
+def observations(strong, weak, ncores):
+    obs = []
+    if strong and len(strong) > 1:
+        ps = sorted(strong)
+        p0, p1 = ps[0], ps[-1]
+        g0, g1 = strong[p0], strong[p1]
+        if g0.get("total") and g1.get("total"):
+            s, e = speed("strong", g0["total"], p0, g1["total"], p1)
+            obs.append(f"Strong scaling, {p0} → {p1} ranks: the whole run speeds up {s:.2f}× (efficiency {e:.0%}); "
+                       f"Newton iterations {ints(g0['its'])} vs {ints(g1['its'])}"
+                       + (" (the same: the partition does not change the Newton path)" if g0["its"] == g1["its"] else
+                          " (different: the partition changes round-off and, through the contact and the step cuts, the Newton path; compare per iteration)") + ".")
+            parts = []
+            for ev in EVENTS:
+                t0, t1 = g0["events"].get(ev), g1["events"].get(ev)
+                if t0 and t1 and t0 >= 1e-3:
+                    parts.append((ev, t0 / t1 * p0 / p1, t0 / g0["total"]))
+            if parts:
+                obs.append("Per event (efficiency, share of the 1-rank total): " + ", ".join(
+                    f"{ev} {e:.0%} ({sh:.0%})" for ev, e, sh in parts) + ".")
+                asm = [x for x in parts if x[0] in ("AtritoResidual", "AtritoJacobian")]
+                lu = [x for x in parts if x[0] == "MatLUFactorNum"]
+                if asm and lu:
+                    obs.append("The assembly (element loops, no communication but the ghost exchange) scales better than the "
+                               "MUMPS factorisation, whose share of the run therefore grows with the ranks."
+                               if min(x[1] for x in asm) > lu[0][1] else
+                               "Here the factorisation scaled as well as or better than the assembly.")
+            if g1.get("other_max") is not None and g1["other_max"] > 0.3 and p1 >= ncores:
+                obs.append(f"The {p1}-rank runs shared the machine with other processes (up to {g1['other_max']:.2f} cores of other load) "
+                           f"on a {ncores}-core machine: part of the loss of efficiency is that contention, not the code.")
+    if weak and len(weak) > 1:
+        ps = sorted(weak)
+        p0, p1 = ps[0], ps[-1]
+        g0, g1 = weak[p0], weak[p1]
+        if g0.get("total") and g1.get("total"):
+            e = g0["total"] / g1["total"]
+            ei = g0["t_per_it"] / g1["t_per_it"] if g0.get("t_per_it") and g1.get("t_per_it") else None
+            obs.append(f"Weak scaling, {p0} → {p1} ranks ({g0['cells']:,} → {g1['cells']:,} cells): efficiency {e:.0%} on the "
+                       f"total time" + (f", {ei:.0%} per Newton iteration" if ei else "") + f" (Newton iterations {ints(g0['its'])} vs {ints(g1['its'])}).")
+            l0, l1 = g0["events"].get("MatLUFactorNum"), g1["events"].get("MatLUFactorNum")
+            j0, j1 = g0["events"].get("AtritoJacobian"), g1["events"].get("AtritoJacobian")
+            if l0 and l1 and j0 and j1:
+                obs.append(f"Jacobian assembly {j0 / j1:.0%} vs LU factorisation {l0 / l1:.0%}: with a direct solver the "
+                           "factorisation of the larger problem costs more than proportionally (fill-in grows faster than the "
+                           "unknowns, and MUMPS's parallel factorisation is less efficient than the element loops), so weak "
+                           "scaling with LU cannot stay flat; an iterative solver would be needed for that.")
+    if not obs:
+        obs.append("Only one rank count was measured: no speedup to report.")
+    return obs
+
+
+# ------------------------------------------------------------------------------------ main
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog=__doc__.split("\n\n", 1)[1])
+    ap.add_argument("--max-ranks", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--ranks", help="explicit rank counts, e.g. 1,2,4 (overrides --max-ranks)")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--only", choices=["strong", "weak"])
+    ap.add_argument("--strong-case", default=STRONG_CASE)
+    ap.add_argument("--strong-args", default=STRONG_ARGS)
+    ap.add_argument("--weak-case", default=WEAK_CASE)
+    ap.add_argument("--weak-cells", default=WEAK_CELLS, help="cells per rank as NX,NY,NZ of the 1-rank mesh")
+    ap.add_argument("--weak-args", default=WEAK_ARGS)
+    ap.add_argument("--launcher", default=DEFAULT_LAUNCHER, help="launch template, {np} = ranks")
+    ap.add_argument("--bin", default=os.path.join(ROOT, "bin", "atrito"))
+    ap.add_argument("--doc", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--no-doc", action="store_true", help="print the section instead of writing it")
+    ap.add_argument("--out", default=os.path.join(ROOT, "out", "scaling"))
+    ap.add_argument("--timeout", type=float, default=600, help="seconds per run")
+    a = ap.parse_args()
+    if a.ranks:
+        ranks = sorted({int(x) for x in a.ranks.split(",")})
+    else:
+        ranks, p = [], 1
+        while p <= a.max_ranks:
+            ranks.append(p)
+            p *= 2
+        if a.max_ranks not in ranks and a.max_ranks > 0:
+            ranks.append(a.max_ranks)
+    if not ranks or ranks[0] < 1 or a.repeat < 1:
+        sys.exit("scaling: bad --ranks/--max-ranks/--repeat")
+    a.strong_case = os.path.abspath(a.strong_case if os.path.exists(a.strong_case) else os.path.join(ROOT, a.strong_case))
+    a.weak_case = os.path.abspath(a.weak_case if os.path.exists(a.weak_case) else os.path.join(ROOT, a.weak_case))
+    base = [int(x) for x in a.weak_cells.split(",")]
+    a.weak_cells_str = "×".join(map(str, base)) + f" = {base[0] * base[1] * base[2]:,}"
+    a.out = os.path.abspath(a.out)
+    a.bin = os.path.abspath(a.bin)
+    os.makedirs(a.out, exist_ok=True)
+    cmdline = "/usr/bin/python3 scripts/scaling.py " + shlex.join(sys.argv[1:]) if sys.argv[1:] else "/usr/bin/python3 scripts/scaling.py"
+
+    def on_term(signum, frame):
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, on_term)
+    signal.signal(signal.SIGINT, on_term)
+    t_start = time.monotonic()
+    load0 = os.getloadavg()[0]
+    mi = machine_info()
+    binary, bindir, bin_mtime = snapshot_binary(a.bin, a.out)
+    runner = Runner(a, binary)
+    recs = []
+    kinds = [k for k in ("strong", "weak") if a.only in (None, k)]
+    log(f"ranks {ranks}, {a.repeat} repetition(s), {', '.join(kinds)}; raw logs in {a.out}")
+    if max(ranks) > (os.cpu_count() or 1):
+        log(f"note: more ranks than the {os.cpu_count()} cores: those runs share cores")
+    try:
+        for rep in range(a.repeat):
+            for kind in kinds:
+                for p in ranks:
+                    if kind == "strong":
+                        rec = runner.run(kind, p, rep, a.strong_case, shlex.split(a.strong_args))
+                    else:
+                        cells = weak_cells(base, p)
+                        rec = runner.run(kind, p, rep, a.weak_case, ["-box_cells", ",".join(map(str, cells))] + shlex.split(a.weak_args))
+                    recs.append(rec)
+    except KeyboardInterrupt:
+        kill_tree(runner.proc)
+        shutil.rmtree(bindir, ignore_errors=True)
+        sys.exit("scaling: interrupted; nothing written")
+    shutil.rmtree(bindir, ignore_errors=True)
+    load1 = os.getloadavg()[0]
+    petsc = next((r["petsc"] for r in recs if r.get("petsc")), None)
+    strong = aggregate([r for r in recs if r["kind"] == "strong"]) if "strong" in kinds else None
+    weak = aggregate([r for r in recs if r["kind"] == "weak"]) if "weak" in kinds else None
+    for agg in (strong, weak):
+        for g in (agg or {}).values():
+            rs = [r for r in g["recs"] if r["status"] == "ok"]
+            g["total_ratio"] = med([r.get("total_ratio") for r in rs])
+    body = report(a, mi, strong, weak, recs, time.monotonic() - t_start, load0, load1, petsc, bin_mtime, cmdline)
+    print(body, end="")
+    if not a.no_doc:
+        write_section(a.doc, body)
+        log(f"wrote the section '{HEADING}' of {os.path.relpath(a.doc)}")
+    return 0 if all(r["status"] == "ok" for r in recs) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
