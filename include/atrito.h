@@ -12,6 +12,7 @@
 
 #define ATRITO_MAX_BC   32
 #define ATRITO_NAME_LEN 256
+#define ATRITO_ERR_PROJECTION 3 /* failure status of a contact projection (beside MAT_ERR_*) */
 
 /* ---------------------------------------------------------------- case (read-only) */
 typedef enum { MESH_BOX = 0, MESH_BLANK, MESH_GMSH, MESH_INP } MeshSource;

@@ -29,12 +29,14 @@ scaling (p0 the smallest rank count, normally 1), E(p) = T(p0)/T(p) for weak sca
 that other processes put on the machine during each run is measured from /proc/stat (busy CPU
 time of the machine minus that of the runs).
 
-The raw outputs go to OUT/<strong|weak>_np<p>_rep<k>.log. The section "## Parallel scaling" of
+The raw outputs go to OUT/<strong|weak>_np<p>_rep<k>.log, the parsed records to OUT/records.json
+(--report-only rewrites the section from them without running anything). The section "## Parallel scaling" of
 --doc is replaced (from its heading to the next "## " heading or the end of the file) or appended;
 every other section is kept as it is. Only the Python standard library is used.
 """
 import argparse
 import datetime
+import json
 import os
 import re
 import resource
@@ -55,7 +57,11 @@ STRONG_ARGS = "-tool_punch_motion 0,0,10 -load_steps 10 -load_dt_max 0.1"
 WEAK_CASE = "cases/clamped_beam.opts"
 WEAK_CELLS = "32,8,8"
 WEAK_ARGS = ""
-DEFAULT_LAUNCHER = "mpiexec --oversubscribe --bind-to none -n {np}"
+# Open MPI's default binding (one core per rank for up to 2 ranks); waiting ranks yield the core
+# instead of busy-polling: on a machine shared with other jobs busy-polling ranks lose whole time
+# slices waiting for a descheduled peer (2-rank beam of 64 cells: 2.4 s with --bind-to none and
+# busy-polling, 0.27 s with yielding, on the development machine with another job running)
+DEFAULT_LAUNCHER = "mpiexec --oversubscribe --mca mpi_yield_when_idle 1 -n {np}"
 
 TOTAL_RE = re.compile(r"^Time \(sec\):\s+([\d.eE+-]+)\s+([\d.eE+-]+)", re.M)
 DONE_RE = re.compile(r"done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([0-9.eE+-]+) s")
@@ -366,11 +372,16 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
     A("")
     ncores = mi["cores"]
     if ncores <= 2:
+        others = [r["other"] for r in recs if r.get("other") is not None]
+        busy = sum(o > 0.3 for o in others)
         A(f"**This machine has {ncores} cores: only 1 and 2 ranks are meaningful here.** More ranks than cores would share "
-          "cores and measure time slicing, not parallel scaling. Other jobs were running on the machine at the same time "
-          "(last column of the tables, in cores): a 2-rank run that shares its cores with another process is slowed "
-          "directly, so the 2-rank figures are lower bounds of what two free cores give. Use the script on a cluster node "
-          "(`--max-ranks`, `--launcher \"srun -n {np}\"`) for real scaling curves.\n")
+          "cores and measure time slicing, not parallel scaling. The machine is shared with other jobs (a long run was "
+          "going on during this measurement); the load they caused is measured during every run (last column of the "
+          f"tables, in cores): {busy} of the {len(others)} runs had more than 0.3 cores of other load"
+          + (f" (up to {max(others):.2f})" if others else "") + ". A 2-rank run that shares a core with another "
+          "process is slowed directly, so a disturbed 2-rank figure is a lower bound of what two free cores give; the "
+          "medians over the repetitions are less affected. Use the script on a cluster node (`--max-ranks`, "
+          "`--launcher \"srun -n {np}\"`) for real scaling curves.\n")
     else:
         A(f"This machine has {ncores} cores; rank counts up to {ncores} were measured.\n")
 
@@ -387,6 +398,11 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
       "`AtritoContact` is the contact part, nested inside them (zero for the beam); `MatLUFactorNum` the MUMPS "
       "numerical factorisations; `KSPSolve` the solves proper (the factorisation is logged apart, under `PCSetUp`); "
       "`SNESSolve` all Newton iterations (assembly, factorisation, solves, line search, contact).")
+    if "yield_when_idle" in a.launcher:
+        A("- `--mca mpi_yield_when_idle 1`: ranks waiting for a message yield the core instead of busy-polling. With "
+          "busy-polling, on a machine where another job holds a core, a waiting rank loses whole time slices to a "
+          "descheduled peer: in a check on this machine the 2-rank beam of 64 cells took 2.4 s with `--bind-to none` "
+          "and busy-polling against 0.27 s with yielding. On a dedicated cluster node the default busy-polling is fine.")
     A(f"- {a.repeat} repetition(s) per configuration, interleaved; medians. Strong: speedup S = T(1)/T(p), "
       "efficiency E = S/p. Weak: E = T(1)/T(p). \"Other load\": busy CPU of the whole machine minus that of the run, "
       "per second of the run, in cores (/proc/stat).")
@@ -463,8 +479,8 @@ def observations(strong, weak, ncores):
             s, e = speed("strong", g0["total"], p0, g1["total"], p1)
             obs.append(f"Strong scaling, {p0} → {p1} ranks: the whole run speeds up {s:.2f}× (efficiency {e:.0%}); "
                        f"Newton iterations {ints(g0['its'])} vs {ints(g1['its'])}"
-                       + (" (the same: the partition does not change the Newton path)" if g0["its"] == g1["its"] else
-                          " (different: the partition changes round-off and, through the contact and the step cuts, the Newton path; compare per iteration)") + ".")
+                       + (" (the same work on every rank count)" if g0["its"] == g1["its"] else
+                          " (different: the partition changes the round-off and with it, through the contact and the step cuts, the Newton path; compare per iteration)") + ".")
             parts = []
             for ev in EVENTS:
                 t0, t1 = g0["events"].get(ev), g1["events"].get(ev)
@@ -480,9 +496,11 @@ def observations(strong, weak, ncores):
                                "MUMPS factorisation, whose share of the run therefore grows with the ranks."
                                if min(x[1] for x in asm) > lu[0][1] else
                                "Here the factorisation scaled as well as or better than the assembly.")
-            if g1.get("other_max") is not None and g1["other_max"] > 0.3 and p1 >= ncores:
-                obs.append(f"The {p1}-rank runs shared the machine with other processes (up to {g1['other_max']:.2f} cores of other load) "
-                           f"on a {ncores}-core machine: part of the loss of efficiency is that contention, not the code.")
+            nb = [r for r in g1["recs"] if r["status"] == "ok" and (r.get("other") or 0) > 0.3]
+            if nb and p1 >= ncores:
+                obs.append(f"{len(nb)} of the {g1['n']} {p1}-rank strong-scaling runs shared the {ncores}-core machine with other "
+                           f"processes (up to {max(r['other'] for r in nb):.2f} cores of other load); such contention, not the "
+                           "code, accounts for part of their loss of efficiency.")
     if weak and len(weak) > 1:
         ps = sorted(weak)
         p0, p1 = ps[0], ps[-1]
@@ -523,6 +541,7 @@ def main():
     ap.add_argument("--no-doc", action="store_true", help="print the section instead of writing it")
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "scaling"))
     ap.add_argument("--timeout", type=float, default=600, help="seconds per run")
+    ap.add_argument("--report-only", action="store_true", help="no runs: rewrite the section from OUT/records.json")
     a = ap.parse_args()
     if a.ranks:
         ranks = sorted({int(x) for x in a.ranks.split(",")})
@@ -543,6 +562,14 @@ def main():
     a.bin = os.path.abspath(a.bin)
     os.makedirs(a.out, exist_ok=True)
     cmdline = "/usr/bin/python3 scripts/scaling.py " + shlex.join(sys.argv[1:]) if sys.argv[1:] else "/usr/bin/python3 scripts/scaling.py"
+
+    if a.report_only:  # re-render from the records of the last measurement
+        with open(os.path.join(a.out, "records.json")) as f:
+            R = json.load(f)
+        for k, v in R["args"].items():
+            setattr(a, k, v)
+        finish(a, R["records"], R["machine"], R["kinds"], R["seconds"], R["load"][0], R["load"][1], R["bin_mtime"], R["cmdline"])
+        return 0
 
     def on_term(signum, frame):
         raise KeyboardInterrupt
@@ -575,6 +602,17 @@ def main():
         sys.exit("scaling: interrupted; nothing written")
     shutil.rmtree(bindir, ignore_errors=True)
     load1 = os.getloadavg()[0]
+    with open(os.path.join(a.out, "records.json"), "w") as f:
+        json.dump(dict(records=recs, machine=mi, load=[load0, load1], bin_mtime=bin_mtime, seconds=time.monotonic() - t_start,
+                       ranks=ranks, kinds=kinds, cmdline=cmdline, args={k: getattr(a, k) for k in SAVED_ARGS}), f, indent=1)
+    finish(a, recs, mi, kinds, time.monotonic() - t_start, load0, load1, bin_mtime, cmdline)
+    return 0 if all(r["status"] == "ok" for r in recs) else 1
+
+
+SAVED_ARGS = ["strong_case", "strong_args", "weak_case", "weak_cells_str", "weak_args", "launcher", "repeat"]
+
+
+def finish(a, recs, mi, kinds, seconds, load0, load1, bin_mtime, cmdline):
     petsc = next((r["petsc"] for r in recs if r.get("petsc")), None)
     strong = aggregate([r for r in recs if r["kind"] == "strong"]) if "strong" in kinds else None
     weak = aggregate([r for r in recs if r["kind"] == "weak"]) if "weak" in kinds else None
@@ -582,12 +620,11 @@ def main():
         for g in (agg or {}).values():
             rs = [r for r in g["recs"] if r["status"] == "ok"]
             g["total_ratio"] = med([r.get("total_ratio") for r in rs])
-    body = report(a, mi, strong, weak, recs, time.monotonic() - t_start, load0, load1, petsc, bin_mtime, cmdline)
+    body = report(a, mi, strong, weak, recs, seconds, load0, load1, petsc, bin_mtime, cmdline)
     print(body, end="")
     if not a.no_doc:
         write_section(a.doc, body)
         log(f"wrote the section '{HEADING}' of {os.path.relpath(a.doc)}")
-    return 0 if all(r["status"] == "ok" for r in recs) else 1
 
 
 if __name__ == "__main__":

@@ -14,8 +14,10 @@
 --np N                    MPI ranks per run (default 1); --jobs J runs at most J at a time
                           (default 1). Keep np x jobs <= the number of cores for timings.
 --launcher TEMPLATE       how a run is started (default "mpiexec --oversubscribe --bind-to none
-                          -n {np}"; --bind-to none so that concurrent jobs are not all pinned to
-                          the same core). In a Slurm allocation e.g. "srun --exact -n {np}".
+                          --mca mpi_yield_when_idle 1 -n {np}": --bind-to none so that concurrent
+                          jobs are not all pinned to the same core, and waiting ranks yield the
+                          core rather than spin, which keeps multi-rank runs from collapsing when
+                          the cores are shared). In a Slurm allocation e.g. "srun --exact -n {np}".
 --out DIR                 the sweep's directory (default out/sweep_<case name>).
 --travels T1,T2,...       tool travels at which force_full is tabulated (interpolated linearly
                           in contact.csv; empty when the run did not reach it). Default: 1/4,
@@ -63,7 +65,7 @@ import threading
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DEFAULT_LAUNCHER = "mpiexec --oversubscribe --bind-to none -n {np}"
+DEFAULT_LAUNCHER = "mpiexec --oversubscribe --bind-to none --mca mpi_yield_when_idle 1 -n {np}"
 MARKER = ".complete"
 LOG = "run.log"
 META = "run.json"

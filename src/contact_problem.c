@@ -272,7 +272,8 @@ PetscErrorCode ContactAssemble(Problem *pb, const PetscScalar *u, PetscReal lamb
     NodePosition(pb, i, u, y);
     if (NodeEval(pb, i, y, lambda, R, J ? K : NULL, &pb->cst_t[i])) {
       nfail++;
-      continue;
+      if (J) PetscCall(PetscArrayzero(K, 9)); /* keep the coordinate-assembly slots aligned */
+      if (!J) continue;
     }
     if (f)
       for (int k = 0; k < 3; k++) f[pb->vloff[v] + k] += R[k];

@@ -1,11 +1,10 @@
 /* Solver module: assembly of the residual and the exact Jacobian over the local cells,
    SNES, load stepping with cut-back and growth, commit and rollback of the history.
 
-   State lifecycle: hist_c (committed) changes only in CommitStep(); every residual or Jacobian
-   evaluation recomputes hist_t (trial) from hist_c and the current iterate. */
+   State lifecycle: hist_c (committed) changes only when a step converges (ProblemSolve); every
+   residual or Jacobian evaluation recomputes hist_t (trial) from hist_c and the current iterate. */
 #include <math.h>
 #include <string.h>
-#include <stdlib.h>
 #include "atrito.h"
 #include "tensor.h"
 #include "output.h"
@@ -25,7 +24,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
   PetscScalar       *f = NULL;
   PetscInt           nfail = 0, badid = PETSC_MAX_INT, badst = 0;
   double             ke[24 * 24], kc[24 * 24];
-  PetscInt           gfail[2];
+  PetscInt           gfail;
 
   PetscFunctionBeginUser;
   PetscCall(DMGlobalToLocal(pb->dm, U, INSERT_VALUES, pb->Uloc));
@@ -77,6 +76,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
     }
   }
   PetscCall(ContactAssemble(pb, u, lambda, f, J, pb->coo_v ? pb->coo_v + pb->coo_off[pb->nc] : NULL));
+  if (pb->contact_fail && !nfail) badst = ATRITO_ERR_PROJECTION;
   nfail += pb->contact_fail;
   PetscCall(VecRestoreArray(pb->Uloc, (PetscScalar **)&u));
   if (residual) PetscCall(VecRestoreArray(pb->Floc, &f));
@@ -86,10 +86,9 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   }
   /* collective failure report: count, and the smallest failing element id with its cause */
-  gfail[0] = nfail;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, gfail, 1, MPIU_INT, MPI_SUM, pb->comm));
-  pb->ndomain_err = gfail[0];
-  if (gfail[0]) {
+  PetscCall(MPIU_Allreduce(&nfail, &gfail, 1, MPIU_INT, MPI_SUM, pb->comm));
+  pb->ndomain_err = gfail;
+  if (gfail) {
     PetscInt pair[2] = {badid, badst}, gmin;
     PetscCall(MPIU_Allreduce(&pair[0], &gmin, 1, MPIU_INT, MPI_MIN, pb->comm));
     if (gmin != badid) pair[1] = 0;
@@ -421,6 +420,7 @@ static const char *FailureCause(Problem *pb, SNESConvergedReason reason, char *b
 {
   if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN || pb->ndomain_err) {
     if (pb->bad_status == MAT_ERR_RETURNMAP) snprintf(buf, len, "the local return map did not converge (element id %d)", (int)pb->bad_cell_id);
+    else if (pb->bad_status == ATRITO_ERR_PROJECTION) snprintf(buf, len, "the projection of a slave node on a tool failed");
     else snprintf(buf, len, "an element inverted (element id %d)", (int)pb->bad_cell_id);
   } else if (reason == SNES_DIVERGED_FNORM_NAN) snprintf(buf, len, "NaN or Inf in the residual");
   else if (reason == SNES_DIVERGED_MAX_IT) snprintf(buf, len, "Newton did not converge in the allowed iterations");
