@@ -58,6 +58,7 @@ PetscErrorCode ContactSetUp(Problem *pb)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventRegister("AtritoContact", DM_CLASSID, &pb->ev_contact));
+  PetscCall(PetscLogEventRegister("AtritoPairing", DM_CLASSID, &pb->ev_pairing));
   PetscCall(ToolsCreateFromOptions(pb->comm, &pb->ntools, &pb->tools));
   pb->ns = 0;
   if (!pb->ntools) PetscFunctionReturn(0);
@@ -146,6 +147,7 @@ PetscErrorCode ContactSeed(Problem *pb, Vec Uloc, PetscReal lambda, PetscBool fr
 
   PetscFunctionBeginUser;
   if (!pb->ns) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(pb->ev_pairing, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(Uloc, &u));
   for (PetscInt i = 0; i < pb->ns; i++) {
     double     y[3], t2[3], t1[3];
@@ -176,6 +178,7 @@ PetscErrorCode ContactSeed(Problem *pb, Vec Uloc, PetscReal lambda, PetscBool fr
     }
   }
   PetscCall(VecRestoreArrayRead(Uloc, &u));
+  PetscCall(PetscLogEventEnd(pb->ev_pairing, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -35,11 +35,21 @@ static PetscErrorCode Run(void)
   pb.comm = PETSC_COMM_WORLD;
   PetscCallMPI(MPI_Comm_rank(pb.comm, &pb.rank));
   PetscCallMPI(MPI_Comm_size(pb.comm, &pb.size));
+  PetscLogStage stage_mesh, stage_setup, stage_solve;
+  PetscCall(PetscLogStageRegister("Mesh", &stage_mesh));
+  PetscCall(PetscLogStageRegister("Setup", &stage_setup));
+  PetscCall(PetscLogStageRegister("Solve", &stage_solve));
   PetscCall(CaseRead(pb.comm, &cs));
   pb.cs = &cs;
+  PetscCall(PetscLogStagePush(stage_mesh));
   PetscCall(ProblemCreateMesh(&pb));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(stage_setup));
   PetscCall(ProblemSetUp(&pb));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(stage_solve));
   PetscCall(ProblemSolve(&pb));
+  PetscCall(PetscLogStagePop());
   PetscCall(ProblemDestroy(&pb));
   PetscFunctionReturn(0);
 }
