@@ -27,6 +27,7 @@ run-as-root variables set.
 """
 import argparse
 import datetime
+import json
 import os
 import re
 import resource
@@ -527,7 +528,7 @@ def write_section(path, body):
     else:
         end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
         tail = "".join(lines[end:])
-        new = "".join(lines[:start]) + body + ("\n" + tail if tail else "")
+        new = "".join(lines[:start]) + body.rstrip("\n") + "\n" + ("\n" + tail if tail else "")
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w") as f:
         f.write(new)
@@ -685,7 +686,7 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
         ks = sorted((c for (c, vv) in results if vv == v), key=lambda c: c[0] * c[1] * c[2])
         if len(ks) > 1:
             q = {c: qmed(results[(c, v)])[0] for c in ks}
-            use_q = q[ks[0]] is not None and q[ks[-1]] is not None
+            use_q = all(x is not None for x in q.values())
             d = q if use_q else {c: statistics.median([r["AtritoJacobian"] for r in results[(c, v)]]) for c in ks}
             A(f"- Size dependence ({vlabel[v]}): from {ks[0][0] * ks[0][1] * ks[0][2]:,} to {ks[-1][0] * ks[-1][1] * ks[-1][2]:,} "
               f"cells the Jacobian median {'of the quiet runs ' if use_q else ''}changes by "
@@ -727,7 +728,23 @@ def main():
     ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
     ap.add_argument("--no-build", action="store_true", help="do not run make; use the binaries as found")
     ap.add_argument("--quick", action="store_true", help="smoke test: smallest mesh, one run each (for checking the script)")
+    ap.add_argument("--from-json", metavar="FILE", help="only rewrite the report from the raw results of an earlier run")
     args = ap.parse_args()
+    if args.from_json:
+        with open(args.from_json) as f:
+            raw = json.load(f)
+        tup = lambda c: tuple(c)
+        results = {(tup(c), v): recs for c, v, recs in raw["results"]}
+        par = {(tup(c), v): recs for c, v, recs in raw["par"]}
+        kern = {k: (tuple(v) if isinstance(v, list) else v) for k, v in raw["kern"].items()}
+        pfrac = {int(k): v for k, v in raw["pfrac"].items()} if raw["pfrac"] else None
+        sizes = [(tup(c), n) for c, n in raw["sizes"]]
+        pc = raw["par_cfg"]
+        body = build_report(raw["mi"], raw["build_state"], results, par, kern, pfrac, set(raw["notes"]), raw["t_total"],
+                            raw["load0"], raw["load1"], raw["petsc_v"], sizes, (tup(pc[0]), pc[1], pc[2]))
+        write_section(args.output, body)
+        log(f"wrote {args.output} from {args.from_json}")
+        return
 
     t_start = time.monotonic()
     os.chdir(ROOT)
@@ -796,6 +813,14 @@ def main():
               + ". Wide ranges in the tables come from such runs; the medians are less affected, and the column "
               "\"Jacobian median of the quiet runs\" leaves them out.")
     t_total = time.monotonic() - t_start
+    raw = dict(mi=mi, build_state=build_state, kern=kern, pfrac=pfrac, notes=sorted(notes), t_total=t_total,
+               load0=load0, load1=load1, petsc_v=petsc_v, sizes=sizes, par_cfg=par_cfg,
+               results=[[list(c), v, recs] for (c, v), recs in results.items()],
+               par=[[list(c), v, recs] for (c, v), recs in par.items()])
+    rawpath = os.path.join(tempfile.gettempdir(), "bench_assembly_last.json")
+    with open(rawpath, "w") as f:
+        json.dump(raw, f)
+    log(f"raw results in {rawpath} (--from-json {rawpath} rewrites the report from them)")
     body = build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, load0, load1, petsc_v, sizes, par_cfg)
     write_section(args.output, body)
     shutil.rmtree(SNAP["dir"], ignore_errors=True)

@@ -90,7 +90,7 @@ L = ["# The hemispherical punch benchmark", "",
      "`scripts/make_hemisphere_cases.py`); `make run` runs the two main cases and prints the force table.", "",
      "## Cases", "",
      "| case | mesh | tools |", "|---|---|---|",
-     "| `hemisphere_frictionless`, `hemisphere_friction` (the main cases) | seed size: O-grid, 301 hexahedra, 1 layer (the paper: 294) | Coons: the paper's punch construction (3 patches of great-circle arcs per quarter + the plane of its shoulder) with each patch split 2 × 2, die fillet from 4 Coons patches; within 0.05 mm of the sphere and torus |",
+     "| `hemisphere_frictionless`, `hemisphere_friction` (the main cases) | seed size: O-grid, 301 hexahedra, 1 layer (the paper: 294) | Coons: the paper's punch construction (3 patches of great-circle arcs per quarter + the plane of its shoulder) with each patch split 3 × 3, die fillet from 4 Coons patches; within 0.02 mm of the sphere and torus |",
      "| `*_coons3` | seed | the paper's own 3 + 1 punch patches and 1 die patch (their interiors lie up to 0.52 mm inside the sphere and 0.32 mm off the torus) |",
      "| `*_analytic` | seed | a sphere and a torus |",
      "| `*_analytic_refined` | 3612 hexahedra, 3 layers | sphere, torus |"]
@@ -141,6 +141,16 @@ if pf and pm:
     L.append(f"| friction: peak of ε̄p away from the pole (radius > 10 mm at 40 mm) | peak {pm[0]:.3f} at r = {pm[1]:.1f} mm |")
 if res.get("hemisphere_friction") and res.get("hemisphere_frictionless"):
     L.append(f"| friction raises the force | at 40 mm: {F('hemisphere_friction', 40):.1f} kN against {F('hemisphere_frictionless', 40):.1f} kN |")
+L += ["", "The refined meshes converge (mesh convergence table below): the remaining difference from the",
+      "reference is not discretisation. From 20 to 40 mm the computed force lies within 4 % of the",
+      "reference; around 15 mm it lies 6 to 7 % below it, where the published points (10 kN at 10.6 mm,",
+      "20 kN at 15.4 mm, 30 kN at 20 mm, read off graphs to about ±5 %) rise more steeply than the",
+      "computation, which matches the point at 10.6 mm to 1 %. The requirement of 5 % on the refined",
+      "mesh is therefore met from 17.5 mm on and missed between 15 and 17.5 mm. The Coons tools agree",
+      "with the analytic ones to 0.25 % once each of the paper's punch patches is split 3 × 3; the",
+      "paper's own 3 + 1 patches, whose interiors lie up to 0.52 mm inside the sphere, give forces up to",
+      "4 % lower. With friction the force is higher from about 15 mm on, and the peak of ε̄p moves from",
+      "the pole to a ring about 27 mm from the axis, as in the paper's Figs. 5 and 6.", ""]
 L += ["", "## Equivalent plastic strain and thickness strain", "",
       "Cell values against the current radius (cells averaged on radial bins), frictionless and with",
       "friction, at 20, 30 and 40 mm: without friction the strain peaks at the pole (where necking",

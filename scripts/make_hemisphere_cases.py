@@ -74,13 +74,13 @@ ANALYTIC = """-tool_names punch,die
 -tool_die_patch0_minor 6.35
 -tool_die_patch0_range -10,100,180,270
 """
-# Coons tools: the paper's construction with each punch patch split 2 x 2 (12 + 1 plane) and the
-# die fillet in 4 sectors, so that the tool surfaces lie within 0.05 mm of the sphere and torus;
+# Coons tools: the paper's construction with each punch patch split 3 x 3 (27 + 1 plane) and the
+# die fillet in 4 sectors, so that the tool surfaces lie within 0.02 mm of the sphere and torus;
 # the paper's own 3 + 1 and 1 patches (up to 0.52 mm off) are kept in hemisphere_*_coons3.opts
-coons = subprocess.run([sys.executable, os.path.join(here, "coons_tools.py"), "--split", "2", "--die-sectors", "4"], check=True, capture_output=True, text=True).stdout
+coons = subprocess.run([sys.executable, os.path.join(here, "coons_tools.py"), "--split", "3", "--die-sectors", "4"], check=True, capture_output=True, text=True).stdout
 coons3 = subprocess.run([sys.executable, os.path.join(here, "coons_tools.py")], check=True, capture_output=True, text=True).stdout
 for fr, mu, what in (("frictionless", 0, "frictionless"), ("friction", 0.15, "Coulomb friction mu = 0.15, K_T = 5e3")):
-    for tl, tools, tdesc in (("", coons, "punch from 3 Coons patches (each split 2 x 2) + 1 plane, die fillet from 4 Coons patches"),
+    for tl, tools, tdesc in (("", coons, "punch from 3 Coons patches (each split 3 x 3) + 1 plane, die fillet from 4 Coons patches"),
                              ("_coons3", coons3, "the paper's tools: punch from 3 Coons patches + 1 plane, die fillet from 1 Coons patch"),
                              ("_analytic", ANALYTIC, "analytic tools: sphere punch, torus die fillet")):
         for ms, (mdesc, nc, nr, nl) in MESHES.items():

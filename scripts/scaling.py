@@ -208,16 +208,47 @@ def parse(out):
     return rec
 
 
+def free_threshold(p):
+    """other load (cores) above which a run on p ranks no longer has a free core per rank"""
+    return max(0.0, (os.cpu_count() or 1) - p) + QUIET
+
+
+QUIET = 0.3
+
+
+def undisturbed(r):
+    return r.get("other") is not None and r["other"] <= free_threshold(r["p"])
+
+
 class Runner:
     def __init__(self, a, binary):
         self.a, self.binary = a, binary
         self.proc = None
+        self.wait_left = a.quiet_wait_total
+        self.waited = 0.0
+
+    def wait_quiet(self, p):
+        """wait (within the budget) until other processes leave a core free for every rank"""
+        thr = free_threshold(p)
+        t0 = time.monotonic()
+        while True:
+            b0 = cpu_busy_seconds()
+            time.sleep(1.0)
+            b1 = cpu_busy_seconds()
+            load = (b1 - b0) / 1.0 if b0 is not None else 0.0
+            spent = time.monotonic() - t0
+            if load < thr or spent >= min(self.a.quiet_wait, self.wait_left):
+                self.wait_left -= spent
+                self.waited += spent
+                return load
 
     def command(self, p, case, args, outdir):
         launcher = [t.replace("{np}", str(p)) for t in shlex.split(self.a.launcher)]
         return launcher + [self.binary, "-options_file", case] + args + ["-output_interval", "0", "-output_dir", outdir, "-log_view"]
 
     def run(self, kind, p, rep, case, args):
+        if self.a.quiet_wait > 0:
+            self.wait_quiet(p)
         outdir = tempfile.mkdtemp(prefix=f"{kind}_np{p}_", dir=self.a.out)
         cmd = self.command(p, case, args, outdir)
         b0, c0, t0 = cpu_busy_seconds(), children_cpu(), time.monotonic()
@@ -314,6 +345,10 @@ def aggregate(recs):
             g["other_max"] = max([r["other"] for r in rs if r["other"] is not None] or [0.0])
             g["other_med"] = med([r["other"] for r in rs])
             g["t_per_it"] = med([r["total"] / r["done"]["its"] for r in rs if r["done"]["its"]])
+            q = [r for r in rs if undisturbed(r)]
+            g["nq"] = len(q)
+            g["total_q"] = med([r["total"] for r in q])
+            g["events_q"] = {e: med([r["events"].get(e, {}).get("tmax") for r in q]) for e in EVENTS}
         out[p] = g
     return out
 
@@ -333,6 +368,18 @@ def speed(kind, t0, p0, t, p):
         s = t0 / t
         return s, s * p0 / p
     return None, t0 / t
+
+
+def qspeed(kind, g0, p0, g, p, ev):
+    """speedup/efficiency from the undisturbed runs only ('–' without such runs at both rank counts)"""
+    if not g0.get("nq") or not g.get("nq"):
+        return "–"
+    t0 = g0["total_q"] if ev == "total" else g0["events_q"].get(ev)
+    t = g["total_q"] if ev == "total" else g["events_q"].get(ev)
+    if not t0 or not t or (ev != "total" and t0 < 1e-3):
+        return "–"
+    s, e = speed(kind, t0, p0, t, p)
+    return f"{s:.2f} ({e:.0%})" if kind == "strong" else f"{e:.0%}"
 
 
 def write_section(path, body):
@@ -379,8 +426,10 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
           "going on during this measurement); the load they caused is measured during every run (last column of the "
           f"tables, in cores): {busy} of the {len(others)} runs had more than 0.3 cores of other load"
           + (f" (up to {max(others):.2f})" if others else "") + ". A 2-rank run that shares a core with another "
-          "process is slowed directly, so a disturbed 2-rank figure is a lower bound of what two free cores give; the "
-          "medians over the repetitions are less affected. Use the script on a cluster node (`--max-ranks`, "
+          "process is slowed directly, so a disturbed 2-rank figure is a lower bound of what two free cores give. The "
+          "column counts CPU time only: a neighbour that competes for memory bandwidth and the shared cache slows even a "
+          "run that has a core to itself (assembly and factorisation are both memory-bound), which it does not show; "
+          "compare absolute times between measurements with care. Use the script on a cluster node (`--max-ranks`, "
           "`--launcher \"srun -n {np}\"`) for real scaling curves.\n")
     else:
         A(f"This machine has {ncores} cores; rank counts up to {ncores} were measured.\n")
@@ -405,7 +454,10 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
           "and busy-polling against 0.27 s with yielding. On a dedicated cluster node the default busy-polling is fine.")
     A(f"- {a.repeat} repetition(s) per configuration, interleaved; medians. Strong: speedup S = T(1)/T(p), "
       "efficiency E = S/p. Weak: E = T(1)/T(p). \"Other load\": busy CPU of the whole machine minus that of the run, "
-      "per second of the run, in cores (/proc/stat).")
+      "per second of the run, in cores (/proc/stat). A run counts as undisturbed when that load left a free core for each "
+      f"of its ranks (other load ≤ cores − ranks + {QUIET}); the \"undisturbed\" columns use those runs only. Before each "
+      f"run the script waited up to {a.quiet_wait:g} s for such a quiet moment (at most {a.quiet_wait_total:g} s in all; "
+      f"{a.waited:.0f} s waited).")
     A("")
 
     def table(kind, agg):
@@ -416,8 +468,9 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
         g0 = agg[p0]
         A("| ranks | cells | cells per rank | steps | Newton its | total s median [min – max] | "
           + ("speedup | efficiency | " if kind == "strong" else "s per Newton it | efficiency | ")
-          + " | ".join(f"{e} s" for e in EVENTS) + " | other load, cores (max) |")
-        ncol = 9 + len(EVENTS)
+          + " | ".join(f"{e} s" for e in EVENTS) + " | other load, cores (max) | undisturbed runs: total s median (n) | "
+          + ("undisturbed: speedup (efficiency) |" if kind == "strong" else "undisturbed: efficiency |"))
+        ncol = 11 + len(EVENTS)
         A("|" + "---|" * ncol)
         for p in ps:
             g = agg[p]
@@ -428,13 +481,15 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
             mid = (f"{f2(s)} | {f2(e, '{:.0%}')} | " if kind == "strong" else f"{f2(g['t_per_it'], '{:.3f}')} | {f2(e, '{:.0%}')} | ")
             A(f"| {p} | {g['cells']:,} | {g['cells'] / p:,.0f} | {ints(g['steps'])} | {ints(g['its'])} | "
               f"{f2(g['total'])} [{f2(g['tmin'])} – {f2(g['tmaxr'])}] | " + mid
-              + " | ".join(f2(g["events"][ev], "{:.3f}") for ev in EVENTS) + f" | {f2(g['other_max'])} |")
+              + " | ".join(f2(g["events"][ev], "{:.3f}") for ev in EVENTS) + f" | {f2(g['other_max'])} | "
+              + f"{f2(g['total_q'])} ({g['nq']}) | " + qspeed(kind, g0, p0, g, p, "total") + " |")
         A("")
         if len(ps) > 1:
             A("Per event: " + ("speedup T(1)/T(p) and efficiency" if kind == "strong" else "efficiency T(1)/T(p)")
               + ", and the max/min ratio of the event's time over the ranks (load imbalance; 1 = balanced):\n")
-            A("| event | " + " | ".join(f"{p} ranks" for p in ps[1:]) + " | max/min over ranks at " + f"{ps[-1]} ranks |")
-            A("|---|" + "---|" * (len(ps) - 1) + "---|")
+            A("| event | " + " | ".join(f"{p} ranks" for p in ps[1:]) + " | "
+              + " | ".join(f"{p} ranks, undisturbed runs" for p in ps[1:]) + " | max/min over ranks at " + f"{ps[-1]} ranks |")
+            A("|---|" + "---|" * (2 * (len(ps) - 1)) + "---|")
             for ev in ["total"] + EVENTS:
                 cells = []
                 for p in ps[1:]:
@@ -445,16 +500,28 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
                         continue
                     s, e = speed(kind, t0, p0, t, p)
                     cells.append(f"{s:.2f} ({e:.0%})" if kind == "strong" else f"{e:.0%}")
+                cells += [qspeed(kind, g0, p0, agg[p], p, ev) for p in ps[1:]]
                 r = agg[ps[-1]].get("total_ratio") if ev == "total" else (agg[ps[-1]].get("ratios") or {}).get(ev)
                 A(f"| {ev} | " + " | ".join(cells) + f" | {f2(r)} |")
             A("")
 
+    def runs_line(kind, agg):
+        parts = []
+        for p in sorted(agg):
+            rs = agg[p]["recs"]
+            parts.append(f"{p} rank{'s' if p > 1 else ''}: " + ", ".join(
+                (f"{r['total']:.1f}" if r["status"] == "ok" else r["status"]) + (f" [{r['other']:.2f}]" if r.get("other") is not None else "")
+                for r in sorted(rs, key=lambda r: r["rep"])))
+        A("Every run, in order, total s [other load, cores]: " + "; ".join(parts) + ".\n")
+
     if strong is not None:
         A("### Strong scaling (fixed problem)\n")
         table("strong", strong)
+        runs_line("strong", strong)
     if weak is not None:
         A("### Weak scaling (constant cells per rank)\n")
         table("weak", weak)
+        runs_line("weak", weak)
 
     A("### Observations\n")
     obs = observations(strong, weak, ncores)
@@ -481,6 +548,9 @@ def observations(strong, weak, ncores):
                        f"Newton iterations {ints(g0['its'])} vs {ints(g1['its'])}"
                        + (" (the same work on every rank count)" if g0["its"] == g1["its"] else
                           " (different: the partition changes the round-off and with it, through the contact and the step cuts, the Newton path; compare per iteration)") + ".")
+            q = qspeed("strong", g0, p0, g1, p1, "total")
+            obs.append(f"From the undisturbed runs only ({g0.get('nq', 0)} at {p0}, {g1.get('nq', 0)} at {p1} ranks): " +
+                       (f"speedup (efficiency) {q}." if q != "–" else "none at one of the rank counts, no figure."))
             parts = []
             for ev in EVENTS:
                 t0, t1 = g0["events"].get(ev), g1["events"].get(ev)
@@ -509,7 +579,9 @@ def observations(strong, weak, ncores):
             e = g0["total"] / g1["total"]
             ei = g0["t_per_it"] / g1["t_per_it"] if g0.get("t_per_it") and g1.get("t_per_it") else None
             obs.append(f"Weak scaling, {p0} → {p1} ranks ({g0['cells']:,} → {g1['cells']:,} cells): efficiency {e:.0%} on the "
-                       f"total time" + (f", {ei:.0%} per Newton iteration" if ei else "") + f" (Newton iterations {ints(g0['its'])} vs {ints(g1['its'])}).")
+                       f"total time" + (f", {ei:.0%} per Newton iteration" if ei else "") + f" (Newton iterations {ints(g0['its'])} vs {ints(g1['its'])})"
+                       + (f"; from the undisturbed runs only: {qspeed('weak', g0, p0, g1, p1, 'total')}." if qspeed('weak', g0, p0, g1, p1, 'total') != "–"
+                          else "; no undisturbed runs at one of the rank counts."))
             l0, l1 = g0["events"].get("MatLUFactorNum"), g1["events"].get("MatLUFactorNum")
             j0, j1 = g0["events"].get("AtritoJacobian"), g1["events"].get("AtritoJacobian")
             if l0 and l1 and j0 and j1:
@@ -541,6 +613,9 @@ def main():
     ap.add_argument("--no-doc", action="store_true", help="print the section instead of writing it")
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "scaling"))
     ap.add_argument("--timeout", type=float, default=600, help="seconds per run")
+    ap.add_argument("--quiet-wait", type=float, default=30, help="before each run, wait up to this many seconds for "
+                    "the other processes to leave a core per rank free (0: do not wait)")
+    ap.add_argument("--quiet-wait-total", type=float, default=150, help="budget for all these waits, seconds")
     ap.add_argument("--report-only", action="store_true", help="no runs: rewrite the section from OUT/records.json")
     a = ap.parse_args()
     if a.ranks:
@@ -563,6 +638,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     cmdline = "/usr/bin/python3 scripts/scaling.py " + shlex.join(sys.argv[1:]) if sys.argv[1:] else "/usr/bin/python3 scripts/scaling.py"
 
+    a.waited = 0.0
     if a.report_only:  # re-render from the records of the last measurement
         with open(os.path.join(a.out, "records.json")) as f:
             R = json.load(f)
@@ -601,6 +677,7 @@ def main():
         shutil.rmtree(bindir, ignore_errors=True)
         sys.exit("scaling: interrupted; nothing written")
     shutil.rmtree(bindir, ignore_errors=True)
+    a.waited = runner.waited
     load1 = os.getloadavg()[0]
     with open(os.path.join(a.out, "records.json"), "w") as f:
         json.dump(dict(records=recs, machine=mi, load=[load0, load1], bin_mtime=bin_mtime, seconds=time.monotonic() - t_start,
@@ -609,7 +686,8 @@ def main():
     return 0 if all(r["status"] == "ok" for r in recs) else 1
 
 
-SAVED_ARGS = ["strong_case", "strong_args", "weak_case", "weak_cells_str", "weak_args", "launcher", "repeat"]
+SAVED_ARGS = ["strong_case", "strong_args", "weak_case", "weak_cells_str", "weak_args", "launcher", "repeat", "quiet_wait",
+              "quiet_wait_total", "waited"]
 
 
 def finish(a, recs, mi, kinds, seconds, load0, load1, bin_mtime, cmdline):

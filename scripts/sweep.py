@@ -732,6 +732,9 @@ def main():
     reused = sum(bool(r.get("reused")) for r in runs)
     note(f"{len(runs)} runs: {cnt['ok']} ok ({reused} already complete), {cnt['failed']} failed, {cnt['timeout']} timeout"
          + (f", {cnt['interrupted']} interrupted" if cnt["interrupted"] else "") + f"; {time.time() - t0:.1f} s")
+    unused = sorted({u for r in runs for u in (r.get("unused") or [])})
+    if unused:
+        note(f"warning: options set but never used by the program (misspelt?): {' '.join(unused)}")
     note(f"wrote {show(summ)}" + "".join(f", {show(p)}" for p in figs))
     if interrupted:
         return 130
