@@ -54,6 +54,8 @@ typedef struct {
   PetscBool  contact_fd;         /* per-node finite-difference tangent instead of the analytic one */
   PetscReal  contact_search;     /* pairing: skip a tool whose box is farther than this      */
   PetscReal  symmetry;           /* multiplicity of the model (4 for a quarter)             */
+  PetscBool  chatter_check;      /* a step whose last Newton iteration changed the active set fails */
+  PetscReal  fault_nan_load;     /* testing: once, a NaN in the residual at this load (< 0: off) */
   /* output */
   char      output_dir[PETSC_MAX_PATH_LEN];
   PetscInt  output_interval;        /* write fields every N converged steps (0: none)  */
@@ -146,6 +148,8 @@ typedef struct {
   PetscReal     lambda_c;      /* load parameter of the committed state                      */
   PetscInt      contact_fail;  /* projections that failed in the last evaluation            */
   PetscReal     search;        /* pairing distance                                           */
+  PetscBool    *active_prev;   /* ns: in contact at the start of the current Newton iteration */
+  PetscBool     fault_done;
 
   PetscLogEvent ev_residual, ev_jacobian, ev_contact, ev_pairing, ev_output;
 } Problem;
@@ -177,6 +181,8 @@ PetscErrorCode ContactSeed(Problem *pb, Vec Uloc_with_bc, PetscReal lambda, Pets
 /* contact contributions at the local displacements u (with boundary values) */
 PetscErrorCode ContactAssemble(Problem *pb, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v);
 PetscErrorCode ContactCommit(Problem *pb);
+PetscErrorCode ContactRecordActive(Problem *pb);
+PetscErrorCode ContactChatter(Problem *pb, PetscInt *count, PetscInt *node);
 PetscErrorCode ContactHistoryOpen(Problem *pb, FILE **fp, PetscBool append);
 PetscErrorCode ContactHistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscReal time, PetscInt its);
 

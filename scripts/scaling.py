@@ -6,6 +6,7 @@
       [--only strong|weak] [--strong-case FILE] [--strong-args "..."] [--weak-case FILE]
       [--weak-cells NX,NY,NZ] [--weak-args "..."] [--launcher "mpiexec ... -n {np}"]
       [--doc doc/performance.md | --no-doc] [--out out/scaling] [--timeout S]
+      [--quiet-wait 30] [--quiet-wait-total 150] [--report-only]
 
 Strong scaling: one fixed problem at 1, 2, 4, ... ranks up to --max-ranks (default: the number
 of cores; the maximum itself is included when it is not a power of two). Default: the refined
@@ -27,7 +28,9 @@ ranks), the steps, Newton iterations and cuts of the final "done:" line. Each co
 only); the tables give medians. Speedup S(p) = T(p0)/T(p), efficiency E(p) = S(p) p0/p for strong
 scaling (p0 the smallest rank count, normally 1), E(p) = T(p0)/T(p) for weak scaling. The load
 that other processes put on the machine during each run is measured from /proc/stat (busy CPU
-time of the machine minus that of the runs).
+time of the machine minus that of the runs); before each run the script waits (up to --quiet-wait
+seconds, --quiet-wait-total in all) for a moment when the other processes leave a core free for
+every rank, and the tables also give the medians of the runs that were not disturbed.
 
 The raw outputs go to OUT/<strong|weak>_np<p>_rep<k>.log, the parsed records to OUT/records.json
 (--report-only rewrites the section from them without running anything). The section "## Parallel scaling" of
@@ -422,9 +425,9 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
         others = [r["other"] for r in recs if r.get("other") is not None]
         busy = sum(o > 0.3 for o in others)
         A(f"**This machine has {ncores} cores: only 1 and 2 ranks are meaningful here.** More ranks than cores would share "
-          "cores and measure time slicing, not parallel scaling. The machine is shared with other jobs (a long run was "
-          "going on during this measurement); the load they caused is measured during every run (last column of the "
-          f"tables, in cores): {busy} of the {len(others)} runs had more than 0.3 cores of other load"
+          "cores and measure time slicing, not parallel scaling. The machine is shared with other jobs; the load they "
+          "caused is measured during every run (last column of the tables, in cores): "
+          f"{busy} of the {len(others)} runs had more than {QUIET} cores of other load"
           + (f" (up to {max(others):.2f})" if others else "") + ". A 2-rank run that shares a core with another "
           "process is slowed directly, so a disturbed 2-rank figure is a lower bound of what two free cores give. The "
           "column counts CPU time only: a neighbour that competes for memory bandwidth and the shared cache slows even a "
@@ -533,7 +536,7 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
           + "; ".join(f"{r['kind']} {r['p']} ranks rep {r['rep'] + 1}: {r['status']} ({r['error'] or 'exit ' + str(r['rc'])})" for r in fails) + ".")
     A("- Raw `-log_view` outputs: `out/scaling/<strong|weak>_np<p>_rep<k>.log` (not in the repository).")
     A("")
-    return "\n".join(L) + "\n"
+    return "\n".join(L).rstrip("\n") + "\n"
 
 
 def observations(strong, weak, ncores):
@@ -585,10 +588,10 @@ def observations(strong, weak, ncores):
             l0, l1 = g0["events"].get("MatLUFactorNum"), g1["events"].get("MatLUFactorNum")
             j0, j1 = g0["events"].get("AtritoJacobian"), g1["events"].get("AtritoJacobian")
             if l0 and l1 and j0 and j1:
-                obs.append(f"Jacobian assembly {j0 / j1:.0%} vs LU factorisation {l0 / l1:.0%}: with a direct solver the "
-                           "factorisation of the larger problem costs more than proportionally (fill-in grows faster than the "
-                           "unknowns, and MUMPS's parallel factorisation is less efficient than the element loops), so weak "
-                           "scaling with LU cannot stay flat; an iterative solver would be needed for that.")
+                obs.append(f"Weak efficiency of the Jacobian assembly {j0 / j1:.0%}, of the LU factorisation {l0 / l1:.0%}: "
+                           "MUMPS's parallel factorisation is less efficient than the element loops, and once the mesh is "
+                           "refined in more than one direction (4 ranks and more) its fill-in grows faster than the unknowns, "
+                           "so weak scaling with a direct solver cannot stay flat; that needs an iterative solver.")
     if not obs:
         obs.append("Only one rank count was measured: no speedup to report.")
     return obs
@@ -603,10 +606,10 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--only", choices=["strong", "weak"])
     ap.add_argument("--strong-case", default=STRONG_CASE)
-    ap.add_argument("--strong-args", default=STRONG_ARGS)
+    ap.add_argument("--strong-args", default=STRONG_ARGS, help="options added to the strong case (write --strong-args=\"-opt v\")")
     ap.add_argument("--weak-case", default=WEAK_CASE)
     ap.add_argument("--weak-cells", default=WEAK_CELLS, help="cells per rank as NX,NY,NZ of the 1-rank mesh")
-    ap.add_argument("--weak-args", default=WEAK_ARGS)
+    ap.add_argument("--weak-args", default=WEAK_ARGS, help="options added to the weak case (write --weak-args=\"-opt v\")")
     ap.add_argument("--launcher", default=DEFAULT_LAUNCHER, help="launch template, {np} = ranks")
     ap.add_argument("--bin", default=os.path.join(ROOT, "bin", "atrito"))
     ap.add_argument("--doc", default=os.path.join(ROOT, "doc", "performance.md"))

@@ -52,7 +52,6 @@ import csv
 import hashlib
 import itertools
 import json
-import math
 import os
 import re
 import shlex

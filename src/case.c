@@ -250,6 +250,10 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
     }
     cs->contact_search = -1;
     PetscCall(PetscOptionsReal("-contact_search_distance", "Pairing: tools farther than this from a node are skipped (default: 5% of the largest tool box)", NULL, cs->contact_search, &cs->contact_search, NULL));
+    cs->chatter_check = PETSC_TRUE;
+    PetscCall(PetscOptionsBool("-contact_chatter_check", "Fail (and cut) a step whose last Newton iteration still changed the set of nodes in contact", NULL, cs->chatter_check, &cs->chatter_check, NULL));
+    cs->fault_nan_load = -1;
+    PetscCall(PetscOptionsReal("-fault_nan_residual_at", "Testing: once, put a NaN into the residual at the first evaluation at or beyond this load", NULL, cs->fault_nan_load, &cs->fault_nan_load, NULL));
     cs->symmetry = (cs->mesh_source == MESH_BLANK && cs->blank_quarter) ? 4 : 1;
     PetscCall(PetscOptionsReal("-model_symmetry", "Multiplicity of the model (4 for a quarter): force_full = force * multiplicity", NULL, cs->symmetry, &cs->symmetry, NULL));
     PetscCheck(cs->symmetry >= 1, comm, PETSC_ERR_USER_INPUT, "-model_symmetry %g must be >= 1", (double)cs->symmetry);

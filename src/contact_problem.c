@@ -93,6 +93,7 @@ PetscErrorCode ContactSetUp(Problem *pb)
   for (PetscInt v = 0; v < pb->nv; v++)
     if (mark[v] && pb->vowned[v]) pb->ns++;
   PetscCall(PetscMalloc4(pb->ns, &pb->slave, 3 * pb->ns, &pb->sgdof, 3 * pb->ns, &pb->seed, pb->ns, &pb->has_seed));
+  PetscCall(PetscCalloc1(pb->ns, &pb->active_prev));
   PetscCall(PetscCalloc2(pb->ns, &pb->cst_c, pb->ns, &pb->cst_t));
   PetscCall(DMGetLocalSection(pb->dm, &ls));
   PetscCall(DMGetGlobalSection(pb->dm, &gs));
@@ -135,6 +136,7 @@ PetscErrorCode ContactDestroy(Problem *pb)
   PetscFunctionBeginUser;
   if (pb->ntools) {
     PetscCall(PetscFree4(pb->slave, pb->sgdof, pb->seed, pb->has_seed));
+    PetscCall(PetscFree(pb->active_prev));
     PetscCall(PetscFree2(pb->cst_c, pb->cst_t));
   }
   PetscCall(ToolsDestroy(pb->ntools, &pb->tools));
@@ -359,5 +361,36 @@ PetscErrorCode ContactHistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscRe
       fflush(fp);
     }
   }
+  PetscFunctionReturn(0);
+}
+
+/* Chattering: nodes whose contact status changed in the last Newton iteration although they carry
+   a significant force (more than 1e-3 of the largest normal force). Returns the count over all
+   ranks and the smallest such node id. */
+PetscErrorCode ContactChatter(Problem *pb, PetscInt *count, PetscInt *node)
+{
+  PetscReal tmax = 0;
+  PetscInt  c = 0, id = PETSC_MAX_INT;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < pb->ns; i++) tmax = PetscMax(tmax, pb->cst_t[i].tN);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tmax, 1, MPIU_REAL, MPIU_MAX, pb->comm));
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    const PetscBool active = pb->cst_t[i].status != CONTACT_OPEN;
+    if (active != pb->active_prev[i] && pb->cst_t[i].tN > 1e-3 * tmax) {
+      c++;
+      id = PetscMin(id, pb->node_id[pb->slave[i]]);
+    }
+  }
+  PetscCall(MPIU_Allreduce(&c, count, 1, MPIU_INT, MPI_SUM, pb->comm));
+  PetscCall(MPIU_Allreduce(&id, node, 1, MPIU_INT, MPI_MIN, pb->comm));
+  PetscFunctionReturn(0);
+}
+
+/* the contact status of every slave node at the current iterate (start of a Newton iteration) */
+PetscErrorCode ContactRecordActive(Problem *pb)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < pb->ns; i++) pb->active_prev[i] = pb->cst_t[i].status != CONTACT_OPEN;
   PetscFunctionReturn(0);
 }

@@ -116,6 +116,18 @@ static PetscErrorCode FormFunction(SNES snes, Vec U, Vec F, void *ctx)
   PetscCall(VecZeroEntries(F));
   if (pb->ndomain_err) PetscCall(SNESSetFunctionDomainError(snes));
   else PetscCall(DMLocalToGlobal(pb->dm, pb->Floc, ADD_VALUES, F));
+  if (pb->cs->fault_nan_load >= 0 && !pb->fault_done && pb->lambda >= pb->cs->fault_nan_load) {
+    /* fault injection for the tests: one NaN, once */
+    PetscInt n;
+    PetscCall(VecGetLocalSize(F, &n));
+    if (!pb->rank && n > 0) {
+      PetscScalar *a;
+      PetscCall(VecGetArray(F, &a));
+      a[0] = NAN;
+      PetscCall(VecRestoreArray(F, &a));
+    }
+    pb->fault_done = PETSC_TRUE;
+  }
   PetscCall(PetscLogEventEnd(pb->ev_residual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -400,6 +412,7 @@ static PetscErrorCode NewtonUpdate(SNES snes, PetscInt it)
     PetscCall(VecRestoreArray(pb->Uloc, &u));
   }
   PetscCall(ContactSeed(pb, pb->Uloc, pb->lambda, PETSC_FALSE));
+  PetscCall(ContactRecordActive(pb));
   PetscFunctionReturn(0);
 }
 
@@ -418,7 +431,8 @@ static PetscErrorCode LocalWithBC(Problem *pb, Vec U, PetscReal lambda)
 
 static const char *FailureCause(Problem *pb, SNESConvergedReason reason, char *buf, size_t len)
 {
-  if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN || pb->ndomain_err) {
+  if (reason == SNES_DIVERGED_INNER && pb->bad_status < 0) snprintf(buf, len, "contact chattering: %d nodes still entering or leaving contact at the last Newton iteration (node id %d)", (int)-pb->bad_status, (int)pb->bad_cell_id);
+  else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN || pb->ndomain_err) {
     if (pb->bad_status == MAT_ERR_RETURNMAP) snprintf(buf, len, "the local return map did not converge (element id %d)", (int)pb->bad_cell_id);
     else if (pb->bad_status == ATRITO_ERR_PROJECTION) snprintf(buf, len, "the projection of a slave node on a tool failed");
     else snprintf(buf, len, "an element inverted (element id %d)", (int)pb->bad_cell_id);
@@ -574,12 +588,25 @@ PetscErrorCode ProblemSolve(Problem *pb)
         PetscCall(TangentPredictor(pb, snes, J, R, W, lam_c, dl, &ok));
         if (!ok) PetscCall(VecCopy(pb->Uc, pb->U));
       } else if (extrapolate) PetscCall(VecAXPBYPCZ(pb->U, -dl / dl_prev, dl / dl_prev, 1.0, pb->Uprev, pb->Uc));
-      pb->lambda = lam_t;
+      pb->lambda     = lam_t;
+      pb->bad_status = 0;
       PetscCall(LocalWithBC(pb, pb->U, lam_t));
       PetscCall(ContactSeed(pb, pb->Uloc, lam_t, PETSC_TRUE));
       PetscCall(SNESSolve(snes, NULL, pb->U));
       PetscCall(SNESGetConvergedReason(snes, &reason));
       PetscCall(SNESGetIterationNumber(snes, &its));
+      if (reason > 0 && pb->ntools && cs->chatter_check && its > 0) {
+        /* the active set must have settled: a node entering or leaving contact with a
+           significant force in the last iteration means the step is not converged */
+        PetscInt nch, nodeid;
+        PetscCall(ProblemResidualLocal(pb, pb->U, lam_t));
+        PetscCall(ContactChatter(pb, &nch, &nodeid));
+        if (nch) {
+          reason         = SNES_DIVERGED_INNER; /* reported below as chattering */
+          pb->bad_status = -nch;
+          pb->bad_cell_id = nodeid;
+        }
+      }
       if (reason > 0) break;
       {
         char buf[256];

@@ -62,3 +62,14 @@ ratio = np.abs(np.linalg.norm(ft[slipping], axis=1) - 0.3 * tn[slipping]).max() 
 ok = slipping.sum() > 0 and ratio < 1e-10 and all(k in g for k in ("contact_gap", "contact_slip"))
 print(("ok" if ok else "not ok") + f" - contact fields (np=2): {int((st > 0).sum())} nodes in contact, {int(slipping.sum())} slipping with |f_T| = mu t_N to {ratio:.1e}")
 PYEOF
+
+# 5. contact chattering: with a loose Newton tolerance the active set is still changing when
+#    SNES reports convergence; the step is cut back, and with no cut allowed the run stops
+#    naming the node
+atrito 1 chatter -options_file cases/block_sphere.opts -output_interval 0 -snes_rtol 0.5 &&
+  n=$(grep -c "contact chattering: .* (node id [0-9]*); retrying" "$OUT/chatter.log") && [ "$n" -ge 1 ] &&
+  echo "ok - contact chattering detected and the step cut back ($n times), run completed" || echo "not ok - contact chattering was not detected"
+mpiexec --oversubscribe -n 2 bin/atrito -options_file cases/block_sphere.opts -output_interval 0 -snes_rtol 0.5 -load_max_cuts 0 -output_dir "$OUT/chatter2" >"$OUT/chatter2.log" 2>&1 </dev/null
+rc=$?
+msg=$(grep -o "atrito: error: step .*contact chattering.*node id [0-9]*.*" "$OUT/chatter2.log" | head -1)
+[ $rc -ne 0 ] && [ -n "$msg" ] && echo "ok - chattering with no cut allowed stops the run (np=2): ${msg:0:120}" || echo "not ok - chattering final message (exit $rc)"

@@ -111,3 +111,14 @@ fields = subprocess.run([sys.executable, "tests/check_fields.py", d, "-q"], capt
 ok = rc not in (0,) and rc < 124 and m is not None and whole and abs(last - float(m.group(4))) < 1e-6 and fields
 print(("ok" if ok else "not ok") + f" - impossible compression stops cleanly (np=2, exit {rc}): " + (f"step {m.group(1)} failed at load {m.group(2)}: {m.group(3)}; history has {len(rows)} whole rows up to {last:.6f}, fields valid {fields}" if m else "no final message"))
 PYEOF
+
+# 7. a NaN in the residual (fault injection): retried with a smaller increment; with no cut
+#    allowed, the run stops naming the cause and the load
+atrito 1 nan -options_file cases/tension_bar.opts -fault_nan_residual_at 0.5 -output_interval 0 &&
+  grep -q "NaN or Inf in the residual; retrying" "$OUT/nan.log" &&
+  $PY tests/check_tension.py "$OUT/nan/history.csv" pull_fx 1 10 3 $SWIFT 1e-6 | sed "s/^\(n*o*t* *ok\) - /\1 - after a NaN residual, retried: /" ||
+  echo "not ok - a NaN residual was not retried"
+$MPI 2 $A -options_file cases/tension_bar.opts -fault_nan_residual_at 0.5 -load_max_cuts 0 -output_interval 0 -output_dir "$OUT/nanfail" >"$OUT/nanfail.log" 2>&1 </dev/null
+rc=$?
+msg=$(grep -o "atrito: error: step [0-9]* failed at load [0-9.]* .*NaN or Inf in the residual.*" "$OUT/nanfail.log" | head -1)
+[ $rc -ne 0 ] && [ $rc -lt 124 ] && [ -n "$msg" ] && echo "ok - a NaN with no cut allowed stops the run (np=2, exit $rc): ${msg:0:110}" || echo "not ok - NaN final message (exit $rc)"
