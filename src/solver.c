@@ -416,6 +416,79 @@ static PetscErrorCode NewtonUpdate(SNES snes, PetscInt it)
   PetscFunctionReturn(0);
 }
 
+/* modified Gram-Schmidt on n vectors (a mode may vanish where everything is constrained) */
+static PetscErrorCode VecOrthonormalize_Modes(PetscInt n, Vec v[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; i++) {
+    PetscReal nrm;
+    for (PetscInt j = 0; j < i; j++) {
+      PetscScalar d;
+      PetscCall(VecDot(v[i], v[j], &d));
+      PetscCall(VecAXPY(v[i], -d, v[j]));
+    }
+    PetscCall(VecNorm(v[i], NORM_2, &nrm));
+    if (nrm > 0) PetscCall(VecScale(v[i], 1.0 / nrm));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The rigid-body modes (3 translations, 3 rotations about the centroid of the reference
+   coordinates) on the unconstrained dofs, as the near-null space of the Jacobian: algebraic
+   multigrid (-pc_type gamg) needs them. */
+static PetscErrorCode SetNearNullSpace(Problem *pb, Mat J)
+{
+  Vec          modes[6];
+  MatNullSpace nsp;
+  PetscSection ls, gs;
+  PetscInt     rstart;
+  PetscReal    c[3] = {0, 0, 0}, n = pb->nvo;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < pb->nvo; k++)
+    for (int i = 0; i < 3; i++) c[i] += pb->X[3 * pb->vloc[k] + i];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, c, 3, MPIU_REAL, MPIU_SUM, pb->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_REAL, MPIU_SUM, pb->comm));
+  for (int i = 0; i < 3; i++) c[i] /= PetscMax(n, 1);
+  PetscCall(DMGetLocalSection(pb->dm, &ls));
+  PetscCall(DMGetGlobalSection(pb->dm, &gs));
+  for (int m = 0; m < 6; m++) {
+    PetscScalar *a;
+    PetscCall(DMCreateGlobalVector(pb->dm, &modes[m]));
+    PetscCall(VecGetOwnershipRange(modes[m], &rstart, NULL));
+    PetscCall(VecGetArray(modes[m], &a));
+    for (PetscInt k = 0; k < pb->nvo; k++) {
+      const PetscInt  p = pb->vstart + pb->vloc[k];
+      const PetscReal *X = pb->X + 3 * pb->vloc[k], x[3] = {X[0] - c[0], X[1] - c[1], X[2] - c[2]};
+      PetscReal        v[3] = {0, 0, 0};
+      PetscInt         goff, cdof, skipped = 0;
+      const PetscInt  *cidx;
+      if (m < 3) v[m] = 1;
+      else { /* e_r x x for the axis r = m - 3 */
+        const int r = m - 3, r1 = (r + 1) % 3, r2 = (r + 2) % 3;
+        v[r1] = -x[r2];
+        v[r2] = x[r1];
+      }
+      PetscCall(PetscSectionGetOffset(gs, p, &goff));
+      PetscCall(PetscSectionGetConstraintDof(ls, p, &cdof));
+      PetscCall(PetscSectionGetConstraintIndices(ls, p, &cidx));
+      for (PetscInt d = 0; d < 3; d++) {
+        PetscBool con = PETSC_FALSE;
+        for (PetscInt j = 0; j < cdof; j++) con = con || cidx[j] == d;
+        if (con) skipped++;
+        else a[goff - rstart + d - skipped] = v[d];
+      }
+    }
+    PetscCall(VecRestoreArray(modes[m], &a));
+  }
+  PetscCall(VecOrthonormalize_Modes(6, modes));
+  PetscCall(MatNullSpaceCreate(pb->comm, PETSC_FALSE, 6, modes, &nsp));
+  PetscCall(MatSetNearNullSpace(J, nsp));
+  PetscCall(MatNullSpaceDestroy(&nsp));
+  for (int m = 0; m < 6; m++) PetscCall(VecDestroy(&modes[m]));
+  PetscFunctionReturn(0);
+}
+
 /* local vector of a global one with the boundary values at lambda */
 static PetscErrorCode LocalWithBC(Problem *pb, Vec U, PetscReal lambda)
 {
@@ -503,6 +576,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   }
 
   PetscCall(DMCreateMatrix(pb->dm, &J));
+  PetscCall(SetNearNullSpace(pb, J));
   PetscCall(MatSetOption(J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   if (cs->assembly_coo) {
     /* coordinate assembly: the element blocks' (i, j) once; each Jacobian then only fills values */

@@ -122,3 +122,11 @@ $MPI 2 $A -options_file cases/tension_bar.opts -fault_nan_residual_at 0.5 -load_
 rc=$?
 msg=$(grep -o "atrito: error: step [0-9]* failed at load [0-9.]* .*NaN or Inf in the residual.*" "$OUT/nanfail.log" | head -1)
 [ $rc -ne 0 ] && [ $rc -lt 124 ] && [ -n "$msg" ] && echo "ok - a NaN with no cut allowed stops the run (np=2, exit $rc): ${msg:0:110}" || echo "not ok - NaN final message (exit $rc)"
+
+# 8. the iterative solver path: GMRES with algebraic multigrid and the rigid-body near-null
+#    space, at 1 and 2 ranks, against the direct solver's history
+GAMG="-ksp_type gmres -pc_type gamg -ksp_rtol 1e-12 -ksp_max_it 400"
+atrito 1 gamg1 -options_file cases/clamped_beam.opts -output_interval 0 $GAMG
+atrito 2 gamg2 -options_file cases/clamped_beam.opts -output_interval 0 $GAMG
+$PY tests/compare_history.py "$OUT/beam1/history.csv" "$OUT/gamg1/history.csv" 8 "clamped beam: GMRES+GAMG (np=1) against LU"
+$PY tests/compare_history.py "$OUT/beam1/history.csv" "$OUT/gamg2/history.csv" 8 "clamped beam: GMRES+GAMG (np=2) against LU"
