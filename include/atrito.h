@@ -160,6 +160,8 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs);
 /* mesh.c: build, partition, distribute, label and index the mesh */
 PetscErrorCode ProblemCreateMesh(Problem *pb);
 PetscErrorCode ProblemDestroyMesh(Problem *pb);
+PetscErrorCode ProblemMarkSetVertices(Problem *pb, const char *set, PetscBool *mark, PetscBool *found);
+PetscErrorCode ProblemVertexDofs(Problem *pb, PetscInt v, PetscInt idx[3]);
 
 /* solver.c */
 PetscErrorCode ProblemSetUp(Problem *pb);

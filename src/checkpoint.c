@@ -84,32 +84,20 @@ static PetscErrorCode OwnedRows(hid_t file, const char *name, PetscBool write, I
    components are not in it: they come from the boundary values) */
 static PetscErrorCode VertexValues(Problem *pb, Vec U, PetscReal *own, PetscBool to_vec)
 {
-  PetscSection ls, gs;
   PetscScalar *u;
   PetscInt     rstart;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetLocalSection(pb->dm, &ls));
-  PetscCall(DMGetGlobalSection(pb->dm, &gs));
   PetscCall(VecGetOwnershipRange(U, &rstart, NULL));
   PetscCall(VecGetArray(U, &u));
   for (PetscInt k = 0; k < pb->nvo; k++) {
-    const PetscInt  p = pb->vstart + pb->vloc[k];
-    PetscInt        goff, cdof, skipped = 0;
-    const PetscInt *cidx;
-    PetscCall(PetscSectionGetOffset(gs, p, &goff));
-    PetscCall(PetscSectionGetConstraintDof(ls, p, &cdof));
-    PetscCall(PetscSectionGetConstraintIndices(ls, p, &cidx));
+    PetscInt idx[3];
+    PetscCall(ProblemVertexDofs(pb, pb->vloc[k], idx));
     for (PetscInt c = 0; c < 3; c++) {
-      PetscBool con = PETSC_FALSE;
-      for (PetscInt j = 0; j < cdof; j++) con = con || cidx[j] == c;
-      if (con) {
-        skipped++;
+      if (idx[c] < 0) {
         if (!to_vec) own[3 * k + c] = 0;
-        continue;
-      }
-      if (to_vec) u[goff - rstart + c - skipped] = own[3 * k + c];
-      else own[3 * k + c] = PetscRealPart(u[goff - rstart + c - skipped]);
+      } else if (to_vec) u[idx[c] - rstart] = own[3 * k + c];
+      else own[3 * k + c] = PetscRealPart(u[idx[c] - rstart]);
     }
   }
   PetscCall(VecRestoreArray(U, &u));

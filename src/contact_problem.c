@@ -51,10 +51,7 @@ static void NodePosition(const Problem *pb, PetscInt i, const PetscScalar *u, do
 PetscErrorCode ContactSetUp(Problem *pb)
 {
   const Case  *cs = pb->cs;
-  DMLabel      label;
-  PetscSection ls, gs;
   PetscBool   *mark, found;
-  PetscInt     pStart, pEnd;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventRegister("AtritoContact", DM_CLASSID, &pb->ev_contact));
@@ -71,50 +68,22 @@ PetscErrorCode ContactSetUp(Problem *pb)
   }
 
   PetscCall(PetscCalloc1(pb->nv, &mark));
-  PetscCall(DMPlexGetChart(pb->dm, &pStart, &pEnd));
   for (PetscInt s = 0; s < cs->ncontact_set; s++) {
-    PetscCall(DMGetLabel(pb->dm, cs->contact_set[s], &label));
-    found = label ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(ProblemMarkSetVertices(pb, cs->contact_set[s], mark, &found));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, pb->comm));
     PetscCheck(found, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set: the mesh has no set named '%s'", cs->contact_set[s]);
-    if (!label) continue;
-    for (PetscInt p = pStart; p < pEnd; p++) {
-      PetscInt val, *cl = NULL, ncl;
-      PetscCall(DMLabelGetValue(label, p, &val));
-      if (val < 0) continue;
-      PetscCall(DMPlexGetTransitiveClosure(pb->dm, p, PETSC_TRUE, &ncl, &cl));
-      for (PetscInt k = 0; k < ncl; k++) {
-        const PetscInt q = cl[2 * k] - pb->vstart;
-        if (q >= 0 && q < pb->nv) mark[q] = PETSC_TRUE;
-      }
-      PetscCall(DMPlexRestoreTransitiveClosure(pb->dm, p, PETSC_TRUE, &ncl, &cl));
-    }
   }
   for (PetscInt v = 0; v < pb->nv; v++)
     if (mark[v] && pb->vowned[v]) pb->ns++;
   PetscCall(PetscMalloc4(pb->ns, &pb->slave, 3 * pb->ns, &pb->sgdof, 3 * pb->ns, &pb->seed, pb->ns, &pb->has_seed));
   PetscCall(PetscCalloc1(pb->ns, &pb->active_prev));
   PetscCall(PetscCalloc2(pb->ns, &pb->cst_c, pb->ns, &pb->cst_t));
-  PetscCall(DMGetLocalSection(pb->dm, &ls));
-  PetscCall(DMGetGlobalSection(pb->dm, &gs));
   pb->ns = 0;
   for (PetscInt v = 0; v < pb->nv; v++) {
     if (!(mark[v] && pb->vowned[v])) continue;
-    const PetscInt  i = pb->ns++;
-    PetscInt        goff, cdof, skipped = 0;
-    const PetscInt *cidx;
-    pb->slave[i] = v;
-    PetscCall(PetscSectionGetOffset(gs, pb->vstart + v, &goff));
-    PetscCall(PetscSectionGetConstraintDof(ls, pb->vstart + v, &cdof));
-    PetscCall(PetscSectionGetConstraintIndices(ls, pb->vstart + v, &cidx));
-    for (PetscInt c = 0; c < 3; c++) {
-      PetscBool con = PETSC_FALSE;
-      for (PetscInt k = 0; k < cdof; k++) con = con || cidx[k] == c;
-      if (con) {
-        pb->sgdof[3 * i + c] = -1;
-        skipped++;
-      } else pb->sgdof[3 * i + c] = goff + c - skipped;
-    }
+    const PetscInt i = pb->ns++;
+    pb->slave[i]     = v;
+    PetscCall(ProblemVertexDofs(pb, v, pb->sgdof + 3 * i));
     pb->has_seed[i] = PETSC_FALSE;
     for (int k = 0; k < 3; k++) pb->cst_c[i].y[k] = pb->X[3 * v + k];
     pb->cst_c[i].tool = pb->cst_c[i].patch = -1;

@@ -180,7 +180,7 @@ static PetscErrorCode PartitionMetis(const MeshData *m, PetscMPIInt size, PetscI
 }
 
 /* Vertices of label `set` (any points: their closures), marked in mark[nv] */
-static PetscErrorCode MarkSetVertices(Problem *pb, const char *set, PetscBool *mark, PetscBool *found)
+PetscErrorCode ProblemMarkSetVertices(Problem *pb, const char *set, PetscBool *mark, PetscBool *found)
 {
   DMLabel  label;
   PetscInt pStart, pEnd;
@@ -223,7 +223,7 @@ static PetscErrorCode CreateSections(Problem *pb)
   for (PetscInt b = 0; b < cs->nbc; b++) {
     PetscBool found;
     PetscCall(PetscArrayzero(mark, pb->nv));
-    PetscCall(MarkSetVertices(pb, cs->bc[b].set, mark, &found));
+    PetscCall(ProblemMarkSetVertices(pb, cs->bc[b].set, mark, &found));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, pb->comm));
     PetscCheck(found, pb->comm, PETSC_ERR_USER_INPUT, "-bc_%s_set: the mesh has no set named '%s'", cs->bc[b].name, cs->bc[b].set);
     for (PetscInt v = 0; v < pb->nv; v++) {
@@ -331,7 +331,7 @@ static PetscErrorCode CreateSections(Problem *pb)
     BCData   *bd = &pb->bc[b];
     PetscBool found;
     PetscCall(PetscArrayzero(mark, pb->nv));
-    PetscCall(MarkSetVertices(pb, cs->bc[b].set, mark, &found));
+    PetscCall(ProblemMarkSetVertices(pb, cs->bc[b].set, mark, &found));
     bd->nset = bd->nown = 0;
     for (PetscInt v = 0; v < pb->nv; v++)
       if (mark[v]) {
@@ -563,5 +563,31 @@ PetscErrorCode ProblemDestroyMesh(Problem *pb)
   PetscCall(PetscFree3(pb->cgdof, pb->cperm, pb->cndof));
   PetscCall(DMDestroy(&pb->dmr));
   PetscCall(DMDestroy(&pb->dm));
+  PetscFunctionReturn(0);
+}
+
+/* Global dof of each displacement component of local vertex v (owned or not), -1 where the
+   component is constrained: the global section numbers the unconstrained components in order. */
+PetscErrorCode ProblemVertexDofs(Problem *pb, PetscInt v, PetscInt idx[3])
+{
+  PetscSection    ls, gs;
+  PetscInt        goff, cdof, skipped = 0;
+  const PetscInt *cidx;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalSection(pb->dm, &ls));
+  PetscCall(DMGetGlobalSection(pb->dm, &gs));
+  PetscCall(PetscSectionGetOffset(gs, pb->vstart + v, &goff));
+  if (goff < 0) goff = -(goff + 1);
+  PetscCall(PetscSectionGetConstraintDof(ls, pb->vstart + v, &cdof));
+  PetscCall(PetscSectionGetConstraintIndices(ls, pb->vstart + v, &cidx));
+  for (PetscInt c = 0; c < 3; c++) {
+    PetscBool con = PETSC_FALSE;
+    for (PetscInt j = 0; j < cdof; j++) con = con || cidx[j] == c;
+    if (con) {
+      idx[c] = -1;
+      skipped++;
+    } else idx[c] = goff + c - skipped;
+  }
   PetscFunctionReturn(0);
 }

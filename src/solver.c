@@ -440,7 +440,6 @@ static PetscErrorCode SetNearNullSpace(Problem *pb, Mat J)
 {
   Vec          modes[6];
   MatNullSpace nsp;
-  PetscSection ls, gs;
   PetscInt     rstart;
   PetscReal    c[3] = {0, 0, 0}, n = pb->nvo;
 
@@ -450,8 +449,6 @@ static PetscErrorCode SetNearNullSpace(Problem *pb, Mat J)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, c, 3, MPIU_REAL, MPIU_SUM, pb->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_REAL, MPIU_SUM, pb->comm));
   for (int i = 0; i < 3; i++) c[i] /= PetscMax(n, 1);
-  PetscCall(DMGetLocalSection(pb->dm, &ls));
-  PetscCall(DMGetGlobalSection(pb->dm, &gs));
   for (int m = 0; m < 6; m++) {
     PetscScalar *a;
     PetscCall(DMCreateGlobalVector(pb->dm, &modes[m]));
@@ -461,23 +458,16 @@ static PetscErrorCode SetNearNullSpace(Problem *pb, Mat J)
       const PetscInt  p = pb->vstart + pb->vloc[k];
       const PetscReal *X = pb->X + 3 * pb->vloc[k], x[3] = {X[0] - c[0], X[1] - c[1], X[2] - c[2]};
       PetscReal        v[3] = {0, 0, 0};
-      PetscInt         goff, cdof, skipped = 0;
-      const PetscInt  *cidx;
+      PetscInt         idx[3];
       if (m < 3) v[m] = 1;
       else { /* e_r x x for the axis r = m - 3 */
         const int r = m - 3, r1 = (r + 1) % 3, r2 = (r + 2) % 3;
         v[r1] = -x[r2];
         v[r2] = x[r1];
       }
-      PetscCall(PetscSectionGetOffset(gs, p, &goff));
-      PetscCall(PetscSectionGetConstraintDof(ls, p, &cdof));
-      PetscCall(PetscSectionGetConstraintIndices(ls, p, &cidx));
-      for (PetscInt d = 0; d < 3; d++) {
-        PetscBool con = PETSC_FALSE;
-        for (PetscInt j = 0; j < cdof; j++) con = con || cidx[j] == d;
-        if (con) skipped++;
-        else a[goff - rstart + d - skipped] = v[d];
-      }
+      PetscCall(ProblemVertexDofs(pb, pb->vloc[k], idx));
+      for (PetscInt d = 0; d < 3; d++)
+        if (idx[d] >= 0) a[idx[d] - rstart] = v[d];
     }
     PetscCall(VecRestoreArray(modes[m], &a));
   }
