@@ -61,7 +61,7 @@ check: deps all
 	@PYTHON=$(PYTHON) bash tests/run_tests.sh
 
 bench: deps all
-	@PYTHON=$(PYTHON) bash scripts/bench_assembly.sh
+	@$(PYTHON) scripts/bench_assembly.py
 
 clean:
 	rm -rf build bin build-san bin-san

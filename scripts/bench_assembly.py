@@ -319,6 +319,7 @@ MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+tota
 STEP_RE = re.compile(r"^step\s+(\d+)\s+time\s+([\d.]+)\s+its\s+(\d+)", re.M)
 LUF_RE = re.compile(r"^MatLUFactorNum\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)", re.M)
 PETSC_RE = re.compile(r"Petsc Release Version ([\d.]+)")
+CPR_RE = re.compile(r"cells per rank:\s*([\d ]+)")
 
 
 def atrito_cmd(cells, ranks, extra, outdir, step_args):
@@ -336,7 +337,9 @@ def parse_run(out):
     mem = MEM_RE.search(out)
     luf = LUF_RE.search(out)
     pv = PETSC_RE.search(out)
+    cpr = CPR_RE.search(out)
     return dict(
+        cells_per_rank=[int(x) for x in cpr.group(1).split()] if cpr else None,
         events=ev,
         cells=int(mesh.group(2)) if mesh else None,
         steps=[(int(a), float(b), int(c)) for a, b, c in STEP_RE.findall(out)],
@@ -590,9 +593,8 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
       "array and one `MatSetValuesCOO`). The count includes the evaluations of the tangent predictor and of the "
       "Newton iterations (column \"Evaluations per run\").")
     A("- Other processes' load: (busy CPU time of the whole machine from /proc/stat − CPU time of the benchmark's "
-      "own processes) / wall time of the run, in cores. Above about 1.3 on one rank, or 0.3 on 2 ranks, a process of the "
-      "run shared its core and the numbers are clearly pessimistic; between 0.3 and 1.3 on one rank they are a few % low "
-      f"(kernel driver: {kern['other']:.2f})."
+      f"own processes) / wall time of the run, in cores. Runs above {QUIET} are counted as disturbed: their numbers are "
+      f"pessimistic (kernel driver: {kern['other']:.2f})."
       if kern.get("other") is not None else "- Other processes' load: not available.")
     A("- Throughput in elements/s/core = count × total cells / (maximum time over ranks × ranks). On one rank "
       "this is simply count × cells / time.")
@@ -702,17 +704,30 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
               + ("." if use_q else "; some of these runs were disturbed by other processes."))
     if par_best is not None:
         ser = coo.get(par_cfg[0]) if par else None
-        parts = []
+        parts, losses = [], []
+        cprs = [tuple(r["cells_per_rank"]) for recs in par.values() for r in recs if r.get("cells_per_rank")]
+        imb = max(max(c) / min(c) for c in cprs) if cprs and all(min(c) > 0 for c in cprs) else None
         for (c, v), recs in par.items():
             pm = statistics.median([r["AtritoJacobian"] for r in recs])
             sm = statistics.median([r["AtritoJacobian"] for r in results.get((c, v), [])]) if (c, v) in results else None
             if sm:
                 parts.append(f"{vlabel[v]}: {pm:,.0f} el/s/core = {100 * pm / sm:.0f} % of the 1-rank figure")
+                losses.append(1 - pm / sm)
         if parts:
             A(f"- On {par_cfg[1]} ranks ({par_cfg[0][0] * par_cfg[0][1] * par_cfg[0][2]:,} cells) the per-core Jacobian "
-              "throughput is " + "; ".join(parts) + ". The time is the slower rank's, so imbalance counts against it; "
-              "with AIJ the entries of rows owned by the other rank also go through PETSc's stash and are "
-              "communicated in MatAssemblyBegin/End, which COO assembly arranges once at preallocation."
+              "throughput is " + "; ".join(parts) + ". The time is the slower rank's (the assembly ends in a collective, "
+              "so both ranks' event times include the wait for the slower one)"
+              + (f"; the cells are split {' / '.join(f'{x:,}' for x in cprs[0])} over the ranks"
+                 + (": equal shares of the cells." if imb < 1.02 else f" (max/min {imb:.2f}).")
+                 if imb is not None else ".")
+              + (" Both variants lose about the same share although only AIJ communicates off-rank entries at "
+                 "every assembly (PETSc's stash; COO arranges that once at preallocation), which points to the two "
+                 "ranks slowing each other through shared hardware, as other processes do (see the notes), "
+                 "rather than to the insertion."
+                 if len(losses) == 2 and abs(losses[0] - losses[1]) < 0.08 else
+                 " With AIJ the entries of rows owned by the other rank go through PETSc's stash and are "
+                 "communicated in MatAssemblyBegin/End at every assembly; COO assembly arranges that once at "
+                 "preallocation.")
               + (" Some of these runs shared the cores with other processes (last column of the first table), "
                  "which on 2 ranks of a 2-core machine directly slows them: take these figures as lower bounds."
                  if any(disturbed(r) for recs in par.values() for r in recs) else ""))
@@ -722,10 +737,22 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
     A(f"- The residual assembly runs at {span(ratios, '{:.1f}')}× the Jacobian's throughput. Over the whole run, the "
       f"LU factorisation (MUMPS, `MatLUFactorNum`) takes {span([100 * x for x in lus])} % of the wall time "
       "(last column of the first table).")
-    if notes:
-        A("\n### Notes\n")
-        for n in sorted(notes):
-            A(f"- {n}")
+    ndist = sum(1 for r in allrecs if disturbed(r))
+    notes = set(notes)
+    notes.add(f"Disturbance by other processes: before each run the script waited for other load below {QUIET} "
+              f"cores (at most 20 s per wait), and re-ran once a run with more, keeping the less disturbed of the "
+              f"two, within a time budget ({', '.join(f'{k} {v:.0f} s' for k, v in BUDGET.items())}): "
+              f"{EXTRA['waited']:.0f} s waited, {EXTRA['reruns']} re-run(s); {ndist} of the {len(allrecs)} kept runs "
+              f"ran with other load above {QUIET} cores"
+              + (f", and so did the kernel driver ({kern['other']:.2f})" if kdist else "")
+              + ". Even a 1-rank run is affected: with one other busy process on the second core the kernel driver "
+              "ran up to about 30 % slower in trials on this machine (shared cache and memory bandwidth; the two "
+              "virtual CPUs may share a physical core)."
+              + (" Wide ranges in the tables come from such runs; the medians are less affected, and the column "
+                 "\"Jacobian median of the quiet runs\" leaves them out." if ndist else ""))
+    A("\n### Notes\n")
+    for n in sorted(notes):
+        A(f"- {n}")
     A("")
     return "\n".join(L) + "\n"
 
@@ -748,6 +775,7 @@ def main():
         pfrac = {int(k): v for k, v in raw["pfrac"].items()} if raw["pfrac"] else None
         sizes = [(tup(c), n) for c, n in raw["sizes"]]
         pc = raw["par_cfg"]
+        EXTRA.update(raw.get("extra", {}))
         body = build_report(raw["mi"], raw["build_state"], results, par, kern, pfrac, set(raw["notes"]), raw["t_total"],
                             raw["load0"], raw["load1"], raw["petsc_v"], sizes, (tup(pc[0]), pc[1], pc[2]))
         write_section(args.output, body)
@@ -805,21 +833,8 @@ def main():
     if any(r["mode"] == "to_end" for recs in list(results.values()) + list(par.values()) for r in recs):
         notes.add("some runs were made to the end with -load_steps 2 because -log_view was missing on the error exit")
     load1 = os.getloadavg()[0]
-    allrecs = [r for recs in list(results.values()) + list(par.values()) for r in recs]
-    ndist = sum(1 for r in allrecs if disturbed(r))
-    notes.add(f"Disturbance by other processes: before each run the script waited for other load below {QUIET} "
-              f"cores (at most 20 s per wait), and re-ran once a run with more, keeping the less disturbed of the "
-              f"two, within a time budget ({', '.join(f'{k} {v:.0f} s' for k, v in BUDGET.items())}): "
-              f"{EXTRA['waited']:.0f} s waited, {EXTRA['reruns']} "
-              f"re-runs; {ndist} of the {len(allrecs)} kept runs still ran with other load above {QUIET} cores. Even on "
-              "one rank this matters: with one other busy process on the second core the kernel driver ran up to "
-              "about 30 % slower in trials on this machine (shared cache and memory bandwidth; the two virtual "
-              "CPUs may share a physical core)"
-              + (f"; the kernel driver ran with other load {kern['other']:.2f}" if kern.get("other") is not None and kern["other"] > QUIET else "")
-              + ". Wide ranges in the tables come from such runs; the medians are less affected, and the column "
-              "\"Jacobian median of the quiet runs\" leaves them out.")
     t_total = time.monotonic() - t_start
-    raw = dict(mi=mi, build_state=build_state, kern=kern, pfrac=pfrac, notes=sorted(notes), t_total=t_total,
+    raw = dict(mi=mi, build_state=build_state, kern=kern, pfrac=pfrac, notes=sorted(notes), t_total=t_total, extra=EXTRA,
                load0=load0, load1=load1, petsc_v=petsc_v, sizes=sizes, par_cfg=par_cfg,
                results=[[list(c), v, recs] for (c, v), recs in results.items()],
                par=[[list(c), v, recs] for (c, v), recs in par.items()])
