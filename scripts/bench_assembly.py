@@ -38,6 +38,9 @@ import sys
 import tempfile
 import time
 
+import benchutil
+from benchutil import children_cpu, cpu_busy_seconds
+
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASE = "cases/clamped_beam.opts"
@@ -250,22 +253,6 @@ def snapshot_binaries(no_build):
 
 
 # ---------------------------------------------------------------------------------- load by other processes
-def cpu_busy_seconds():
-    """busy CPU seconds of the whole machine since boot (all cores)"""
-    try:
-        with open("/proc/stat") as f:
-            v = [int(x) for x in f.readline().split()[1:]]
-    except (OSError, ValueError):
-        return None
-    busy = v[0] + v[1] + v[2] + (v[5] if len(v) > 5 else 0) + (v[6] if len(v) > 6 else 0)
-    return busy / os.sysconf("SC_CLK_TCK")
-
-
-def children_cpu():
-    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return ru.ru_utime + ru.ru_stime
-
-
 def timed_run(cmd, timeout):
     """subprocess.run with its wall time and the average number of cores that other processes used meanwhile"""
     b0, c0, t0 = cpu_busy_seconds(), children_cpu(), time.monotonic()
@@ -520,25 +507,7 @@ def mib(x):
 
 
 def write_section(path, body):
-    text = ""
-    if os.path.exists(path):
-        with open(path) as f:
-            text = f.read()
-    lines = text.splitlines(keepends=True)
-    start = next((i for i, l in enumerate(lines) if l.rstrip() == HEADING), None)
-    if start is None:
-        if not text.strip():
-            new = "# Performance\n\n" + body
-        else:
-            new = text.rstrip("\n") + "\n\n" + body
-    else:
-        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
-        tail = "".join(lines[end:])
-        new = "".join(lines[:start]) + body.rstrip("\n") + "\n" + ("\n" + tail if tail else "")
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
-        f.write(new)
-
+    benchutil.write_doc_section(path, HEADING, body)
 
 def qmed(recs, key="AtritoJacobian"):
     """median over the runs that other processes did not disturb, and their number"""

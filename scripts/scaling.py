@@ -52,6 +52,9 @@ import sys
 import tempfile
 import time
 
+import benchutil
+from benchutil import children_cpu, cpu_busy_seconds
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HEADING = "## Parallel scaling"
 EVENTS = ["SNESSolve", "AtritoResidual", "AtritoJacobian", "AtritoContact", "KSPSolve", "MatLUFactorNum"]
@@ -99,21 +102,6 @@ def run_env():
 
 
 # ------------------------------------------------------------------------------------ machine load
-def cpu_busy_seconds():
-    try:
-        with open("/proc/stat") as f:
-            v = [int(x) for x in f.readline().split()[1:]]
-    except (OSError, ValueError):
-        return None
-    busy = v[0] + v[1] + v[2] + (v[5] if len(v) > 5 else 0) + (v[6] if len(v) > 6 else 0)
-    return busy / os.sysconf("SC_CLK_TCK")
-
-
-def children_cpu():
-    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return ru.ru_utime + ru.ru_stime
-
-
 def machine_info():
     info = {}
     cpu = ""
@@ -148,27 +136,7 @@ def machine_info():
 
 # ------------------------------------------------------------------------------------ runs
 def snapshot_binary(path, where, wait=180.0):
-    """private copy of the program (others may rebuild the tree meanwhile)"""
-    t0 = time.time()
-    d = tempfile.mkdtemp(prefix=".atrito_bin_", dir=where)
-    while True:
-        try:
-            st = os.stat(path)
-            if time.time() - st.st_mtime > 3 and st.st_size > 0:
-                dst = os.path.join(d, "atrito")
-                shutil.copy2(path, dst)
-                if os.stat(path).st_mtime == st.st_mtime:
-                    r = subprocess.run([dst, "-help", "intro"], env=run_env(), capture_output=True, timeout=60)
-                    if r.returncode == 0:
-                        return dst, d, st.st_mtime
-        except (OSError, subprocess.SubprocessError):
-            pass
-        if time.time() - t0 > wait:
-            shutil.rmtree(d, ignore_errors=True)
-            sys.exit(f"scaling: {path} is missing or keeps changing (run make)")
-        log(f"waiting for {path} (missing or being rebuilt)")
-        time.sleep(5)
-
+    return benchutil.snapshot_binary(path, where, wait, "scaling", log)
 
 def weak_cells(base, p):
     """base cells refined by the prime factors of p, each on the axis refined least so far"""
@@ -386,23 +354,7 @@ def qspeed(kind, g0, p0, g, p, ev):
 
 
 def write_section(path, body):
-    text = ""
-    if os.path.exists(path):
-        with open(path) as f:
-            text = f.read()
-    lines = text.splitlines(keepends=True)
-    start = next((i for i, l in enumerate(lines) if l.rstrip() == HEADING), None)
-    if start is None:
-        new = ("# Performance\n\n" + body) if not text.strip() else text.rstrip("\n") + "\n\n" + body
-    else:
-        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
-        tail = "".join(lines[end:])
-        new = "".join(lines[:start]) + body + ("\n" + tail if tail else "")
-    tmp = path + ".scaling.tmp"
-    with open(tmp, "w") as f:
-        f.write(new)
-    os.replace(tmp, path)
-
+    benchutil.write_doc_section(path, HEADING, body)
 
 def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, cmdline):
     L = []

@@ -63,6 +63,8 @@ import tempfile
 import threading
 import time
 
+import benchutil
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_LAUNCHER = "mpiexec --oversubscribe --bind-to none --mca mpi_yield_when_idle 1 -n {np}"
 MARKER = ".complete"
@@ -461,30 +463,10 @@ def describe(r):
 
 
 def snapshot_binary(path, where, wait=120.0):
-    """a private copy of the program, once it exists and has not changed for a few seconds
-    (others may be rebuilding the tree); in the sweep's directory, so that ranks on other nodes
-    of a cluster allocation see it too"""
-    t0 = time.time()
-    d = tempfile.mkdtemp(prefix=".atrito_bin_", dir=where)
-    while True:
-        try:
-            st = os.stat(path)
-            if time.time() - st.st_mtime > 3 and st.st_size > 0:
-                dst = os.path.join(d, "atrito")
-                shutil.copy2(path, dst)
-                if os.stat(path).st_mtime == st.st_mtime:
-                    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-                    r = subprocess.run([dst, "-help", "intro"], env=env, capture_output=True, timeout=60)
-                    if r.returncode == 0:
-                        return dst, d
-        except (OSError, subprocess.SubprocessError):
-            pass
-        if time.time() - t0 > wait:
-            shutil.rmtree(d, ignore_errors=True)
-            sys.exit(f"sweep: {path} is missing or keeps changing (run make)")
-        note(f"waiting for {path} (missing or being rebuilt)")
-        time.sleep(5)
-
+    """a private copy of the program (in the sweep's directory, so that ranks on other nodes of a
+    cluster allocation see it too)"""
+    dst, d, _ = benchutil.snapshot_binary(path, where, wait, "sweep", note)
+    return dst, d
 
 # ------------------------------------------------------------------------------------------ outputs
 def fmt(x, spec="{:.6g}"):

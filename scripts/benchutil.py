@@ -1,0 +1,72 @@
+"""Helpers shared by the measurement scripts (bench_assembly.py, scaling.py, sweep.py)."""
+import os
+import resource
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def cpu_busy_seconds():
+    """busy CPU seconds of the whole machine since boot (all cores), or None"""
+    try:
+        with open("/proc/stat") as f:
+            v = [int(x) for x in f.readline().split()[1:]]
+    except (OSError, ValueError):
+        return None
+    busy = v[0] + v[1] + v[2] + (v[5] if len(v) > 5 else 0) + (v[6] if len(v) > 6 else 0)
+    return busy / os.sysconf("SC_CLK_TCK")
+
+
+def children_cpu():
+    """CPU seconds of the finished child processes"""
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+def write_doc_section(path, heading, body):
+    """replace the section `heading` of a Markdown file (to the next '## ' heading or the end) with
+    body, keeping every other section; append it when absent; written atomically"""
+    text = ""
+    if os.path.exists(path):
+        with open(path) as f:
+            text = f.read()
+    lines = text.splitlines(keepends=True)
+    start = next((i for i, l in enumerate(lines) if l.rstrip() == heading), None)
+    if start is None:
+        new = ("# Performance\n\n" + body) if not text.strip() else text.rstrip("\n") + "\n\n" + body
+    else:
+        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
+        tail = "".join(lines[end:])
+        new = "".join(lines[:start]) + body.rstrip("\n") + "\n" + ("\n" + tail if tail else "")
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(new)
+    os.replace(tmp, path)
+
+
+def snapshot_binary(path, where, wait=120.0, who="benchmark", note=print):
+    """a private copy of the program, once it exists and has not changed for a few seconds (others
+    may be rebuilding the tree), checked to start; returns (copy, its directory, source mtime)"""
+    t0 = time.time()
+    d = tempfile.mkdtemp(prefix=".atrito_bin_", dir=where)
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    while True:
+        try:
+            st = os.stat(path)
+            if time.time() - st.st_mtime > 3 and st.st_size > 0:
+                dst = os.path.join(d, "atrito")
+                shutil.copy2(path, dst)
+                if os.stat(path).st_mtime == st.st_mtime:
+                    r = subprocess.run([dst, "-help", "intro"], env=env, capture_output=True, timeout=60)
+                    if r.returncode == 0:
+                        return dst, d, st.st_mtime
+        except (OSError, subprocess.SubprocessError):
+            pass
+        if time.time() - t0 > wait:
+            shutil.rmtree(d, ignore_errors=True)
+            sys.exit(f"{who}: {path} is missing or keeps changing (run make)")
+        note(f"waiting for {path} (missing or being rebuilt)")
+        time.sleep(5)
