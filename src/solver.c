@@ -659,11 +659,12 @@ PetscErrorCode ProblemSolve(Problem *pb)
       PetscCall(SNESSolve(snes, NULL, pb->U));
       PetscCall(SNESGetConvergedReason(snes, &reason));
       PetscCall(SNESGetIterationNumber(snes, &its));
+      /* converged: one more evaluation at the solution (trial states, cell info, reactions) */
+      if (reason > 0) PetscCall(ProblemResidualLocal(pb, pb->U, lam_t));
       if (reason > 0 && pb->ntools && cs->chatter_check && its > 0) {
         /* the active set must have settled: a node entering or leaving contact with a
            significant force in the last iteration means the step is not converged */
         PetscInt nch, nodeid;
-        PetscCall(ProblemResidualLocal(pb, pb->U, lam_t));
         PetscCall(ContactChatter(pb, &nch, &nodeid));
         if (nch) {
           reason         = SNES_DIVERGED_INNER; /* reported below as chattering */
@@ -684,8 +685,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
         dl *= cs->load_cut;
       }
     }
-    /* converged: evaluate once more at the solution (trial history, cell info, reactions) and commit */
-    PetscCall(ProblemResidualLocal(pb, pb->U, lam_t));
+    /* commit the trial states of that evaluation */
     PetscCheck(!pb->ndomain_err, pb->comm, PETSC_ERR_PLIB, "element evaluation failed at a converged state");
     PetscCall(PetscArraycpy(pb->hist_c, pb->hist_t, (size_t)pb->nc * HEX8_NQP * MAT_NHIST));
     PetscCall(ContactCommit(pb));
