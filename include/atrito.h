@@ -66,6 +66,15 @@ typedef struct {
 } Case;
 
 /* ---------------------------------------------------------------- contact state */
+/* The last pairing of a slave node: the tool and projection found for the position y at the load
+   lambda. Pairing the node again at the same y and lambda (bit for bit) returns it unchanged: the
+   residual, the Jacobian and the frame update of a Newton iteration see one node position. */
+typedef struct {
+  PetscReal  y[3], lambda;
+  PetscInt   tool; /* -1: no tool within the search distance; -2: empty */
+  Projection pr;
+} PairMemo;
+
 typedef struct {
   PetscInt  status;     /* CONTACT_OPEN / STICK / SLIP                                   */
   PetscInt  tool, patch;/* pairing: tool and patch of the closest point, -1 when none      */
@@ -149,6 +158,7 @@ typedef struct {
   PetscInt      contact_fail;  /* projections that failed in the last evaluation            */
   PetscReal     search;        /* pairing distance                                           */
   PetscBool    *active_prev;   /* ns: in contact at the start of the current Newton iteration */
+  PairMemo     *pmemo;         /* ns: the last pairing of each node                          */
   PetscBool     fault_done;
 
   PetscLogEvent ev_residual, ev_jacobian, ev_contact, ev_pairing, ev_output;

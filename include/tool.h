@@ -17,6 +17,18 @@ typedef struct {
   double    a[3], b[3], c[3];
 } Curve;
 
+/* A boundary curve prepared for evaluation (PatchPrepare). Line: C(s) = o + s e1. Arc:
+   C(s) = o + rho (cos(s th) e1 + sin(s th) e2), o the centre, rho the radius, e1, e2 orthonormal,
+   th in (0, pi) the angle from a to b; any s continues along the circle. */
+typedef struct {
+  int    arc;
+  double o[3], e1[3], e2[3], rho, th;
+} CurveFrame;
+
+/* Samples of a Coons patch on a TOOL_COONS_GRID^2 grid of (xi, eta), the starting points of its
+   projection */
+#define TOOL_COONS_GRID 9
+
 /* Every patch maps (xi, eta) in [0,1]^2 to a point x(xi, eta) of its reference position (the tool
    at load 0). Parameters per type (angles in radians inside the struct):
    plane:    x = o + (u0 + xi (u1-u0)) e1 + (v0 + eta (v1-v0)) e2, e1, e2 orthonormal
@@ -39,7 +51,17 @@ typedef struct {
   Curve     C0, C1, D0, D1;                           /* coons */
   double    bbox[6];                                  /* reference bounding box (set with the tool) */
   int       has_box;                                  /* bbox is set                              */
+  /* set by PatchPrepare (coons): the four curves prepared and the grid of samples; without it
+     they are computed at every evaluation, with the same results */
+  int        prepared;
+  CurveFrame frame[4];                                /* C0, C1, D0, D1                           */
+  double     grid[TOOL_COONS_GRID][TOOL_COONS_GRID][3];
 } Patch;
+
+/* Prepares a patch whose parameters are set, once, for fast evaluation and projection (a Coons
+   patch's curve frames and sample grid; nothing for the other types). Must be called again if the
+   parameters change. */
+void PatchPrepare(Patch *p);
 
 typedef struct {
   char    name[PETSC_MAX_PATH_LEN];
@@ -77,8 +99,10 @@ typedef struct {
 int ToolProject(const Tool *t, const double shift[3], const double y[3], double maxdist, Projection *pr);
 
 /* Derivative of the contact normal with respect to the projected point's position y for the
-   analytic surfaces (plane: 0; sphere, cylinder, torus: the curvature of the offset surface
-   through y). dn[3*i+j] = d n_i / d y_j. Returns 0, or 1 for a Coons patch (no analytic form). */
+   patches (plane: 0; sphere, cylinder, torus: the curvature of the offset surface through y;
+   Coons: from the second derivatives of the patch and the stationarity of the projection).
+   dn[3*i+j] = d n_i / d y_j. Returns 0, or 1 where the patch is degenerate at the projected point
+   (a collapsed side of a Coons patch: x_xi x x_eta = 0), where the caller must difference. */
 int PatchNormalDerivative(const Patch *p, const double shift[3], const double y[3], const Projection *pr, double dn[9]);
 
 /* Options: -tool_names a,b and per tool -tool_<name>_... (see doc/tools.md). Collective;

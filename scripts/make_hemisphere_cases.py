@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Writes the hemispherical punch benchmark's options files under cases/:
-hemisphere_{frictionless,friction}[_analytic][_refined|_fine].opts.
+hemisphere_{frictionless,friction}[_analytic][_refined|_fine|_xfine].opts.
 
 The Coons cases build the tools as the method's paper did (scripts/coons_tools.py: punch from 3
 Coons patches and a plane, die fillet from 1 Coons patch); the _analytic cases use a sphere and a
 torus. Seed mesh: 301 hexahedra, one layer (the paper: 294); _refined: 3 layers, 12x the elements;
-_fine: 4 layers, 32x."""
+_fine: 4 layers, 32x; _xfine: 4 layers, 68x."""
 import os
 import subprocess
 import sys
@@ -24,6 +24,7 @@ MESHES = {
     "": ("seed-size mesh (301 hexahedra, one layer)", 7, 18, 1),
     "_refined": ("refined mesh (3612 hexahedra, 3 layers)", 14, 36, 3),
     "_fine": ("fine mesh (9600 hexahedra, 4 layers)", 20, 50, 4),
+    "_xfine": ("extra-fine mesh (20400 hexahedra, 4 layers)", 30, 70, 4),
 }
 COMMON = """-mesh_type blank
 -blank_radius 59.18

@@ -32,6 +32,21 @@ static PetscInt Pair(const Problem *pb, const double y[3], PetscReal lambda, Pro
   return tbest;
 }
 
+/* Pair for slave node i, through its memo (the same y and lambda give the same result) */
+static PetscInt PairNode(const Problem *pb, PetscInt i, const double y[3], PetscReal lambda, Projection *pr)
+{
+  PairMemo *m = &pb->pmemo[i];
+  if (m->tool != -2 && m->lambda == lambda && m->y[0] == y[0] && m->y[1] == y[1] && m->y[2] == y[2]) {
+    if (m->tool >= 0) *pr = m->pr;
+    return m->tool;
+  }
+  m->tool = Pair(pb, y, lambda, &m->pr);
+  for (int k = 0; k < 3; k++) m->y[k] = y[k];
+  m->lambda = lambda;
+  if (m->tool >= 0) *pr = m->pr;
+  return m->tool;
+}
+
 /* chord of eq 28: from the projection to the point at (xi + 0.01, eta) of the same patch */
 static void Chord(const Problem *pb, PetscInt tool, const Projection *pr, double chord[3])
 {
@@ -77,6 +92,7 @@ PetscErrorCode ContactSetUp(Problem *pb)
     if (mark[v] && pb->vowned[v]) pb->ns++;
   PetscCall(PetscMalloc4(pb->ns, &pb->slave, 3 * pb->ns, &pb->sgdof, 3 * pb->ns, &pb->seed, pb->ns, &pb->has_seed));
   PetscCall(PetscCalloc1(pb->ns, &pb->active_prev));
+  PetscCall(PetscMalloc1(pb->ns, &pb->pmemo));
   PetscCall(PetscCalloc2(pb->ns, &pb->cst_c, pb->ns, &pb->cst_t));
   pb->ns = 0;
   for (PetscInt v = 0; v < pb->nv; v++) {
@@ -89,6 +105,7 @@ PetscErrorCode ContactSetUp(Problem *pb)
     pb->cst_c[i].tool = pb->cst_c[i].patch = -1;
     pb->cst_c[i].gap                       = PETSC_INFINITY;
     pb->cst_t[i]                           = pb->cst_c[i];
+    pb->pmemo[i].tool                      = -2;
   }
   PetscCall(PetscFree(mark));
   {
@@ -106,6 +123,7 @@ PetscErrorCode ContactDestroy(Problem *pb)
   if (pb->ntools) {
     PetscCall(PetscFree4(pb->slave, pb->sgdof, pb->seed, pb->has_seed));
     PetscCall(PetscFree(pb->active_prev));
+    PetscCall(PetscFree(pb->pmemo));
     PetscCall(PetscFree2(pb->cst_c, pb->cst_t));
   }
   PetscCall(ToolsDestroy(pb->ntools, &pb->tools));
@@ -131,7 +149,7 @@ PetscErrorCode ContactSeed(Problem *pb, Vec Uloc, PetscReal lambda, PetscBool fr
         for (int k = 0; k < 3; k++) pb->seed[3 * i + k] = pb->cst_c[i].t1[k];
     }
     NodePosition(pb, i, u, y);
-    tool = Pair(pb, y, lambda, &pr);
+    tool = PairNode(pb, i, y, lambda, &pr);
     if (tool < 0) {
       pb->has_seed[i] = PETSC_FALSE;
       continue;
@@ -173,7 +191,7 @@ static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda
   st->tN                = 0;
   st->status            = CONTACT_OPEN;
   st->has_frame         = PETSC_FALSE;
-  tool                  = Pair(pb, y, lambda, &pr);
+  tool                  = PairNode(pb, i, y, lambda, &pr);
   st->tool              = tool;
   st->gap               = tool < 0 ? PETSC_INFINITY : pr.gap;
   if (tool < 0) return 0;
@@ -240,6 +258,15 @@ PetscErrorCode ContactAssemble(Problem *pb, const PetscScalar *u, PetscReal lamb
   PetscFunctionBeginUser;
   if (!pb->ns) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(pb->ev_contact, 0, 0, 0, 0));
+  /* pairing phase: every slave node to its tool and patch (kept in the node's memo) */
+  PetscCall(PetscLogEventBegin(pb->ev_pairing, 0, 0, 0, 0));
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    double     y[3];
+    Projection pr;
+    NodePosition(pb, i, u, y);
+    (void)PairNode(pb, i, y, lambda, &pr);
+  }
+  PetscCall(PetscLogEventEnd(pb->ev_pairing, 0, 0, 0, 0));
   for (PetscInt i = 0; i < pb->ns; i++) {
     double         y[3], R[3], K[9];
     const PetscInt v = pb->slave[i];

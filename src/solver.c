@@ -455,7 +455,6 @@ static PetscErrorCode SetNearNullSpace(Problem *pb, Mat J)
     PetscCall(VecGetOwnershipRange(modes[m], &rstart, NULL));
     PetscCall(VecGetArray(modes[m], &a));
     for (PetscInt k = 0; k < pb->nvo; k++) {
-      const PetscInt  p = pb->vstart + pb->vloc[k];
       const PetscReal *X = pb->X + 3 * pb->vloc[k], x[3] = {X[0] - c[0], X[1] - c[1], X[2] - c[2]};
       PetscReal        v[3] = {0, 0, 0};
       PetscInt         idx[3];

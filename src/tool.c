@@ -45,14 +45,8 @@ static void Radial(const Patch *p, double ph, double w[3], double wp[3])
 /* evaluation                                                                                   */
 /* ------------------------------------------------------------------------------------------ */
 
-/* A boundary curve prepared for evaluation. Line: C(s) = a + s (b - a). Arc:
-   C(s) = c + rho (cos(s th) e1 + sin(s th) e2), rho = |a - c|, e1 = (a - c)/rho, e2 the unit part
-   of b - c normal to e1, th in (0, pi) the angle from a to b; any s continues along the circle. */
-typedef struct {
-  int    arc;
-  double o[3], e1[3], e2[3], rho, th; /* line: o = a, e1 = b - a */
-} CurveFrame;
-
+/* A boundary curve prepared for evaluation (CurveFrame, tool.h). Line: o = a, e1 = b - a. Arc:
+   o = c, rho = |a - c|, e1 = (a - c)/rho, e2 the unit part of b - c normal to e1. */
 static void CurveSetup(const Curve *cv, CurveFrame *F)
 {
   double pr, wn;
@@ -118,6 +112,10 @@ typedef struct {
 
 static void CoonsSetup(const Patch *p, CoonsFrame *F)
 {
+  if (p->prepared) {
+    for (int k = 0; k < 4; k++) F->f[k] = p->frame[k];
+    return;
+  }
   CurveSetup(&p->C0, &F->f[0]);
   CurveSetup(&p->C1, &F->f[1]);
   CurveSetup(&p->D0, &F->f[2]);
@@ -427,9 +425,10 @@ static void TorusStart(const Patch *p, const double y[3], double z[2])
 
 /* Coons starting points from a 9 x 9 grid of samples: the curves at the grid lines (an arc's
    angles by the rotation recurrence), the blend at the nodes. */
-enum { NG = 9 };
+enum { NG = TOOL_COONS_GRID };
 typedef struct {
-  double X[NG][NG][3], d2[NG][NG];
+  const double (*X)[NG][3]; /* the samples: the patch's prepared grid, or own */
+  double Xown[NG][NG][3], d2[NG][NG];
   int    ia, ib; /* the best sample */
 } CoonsGrid;
 
@@ -450,31 +449,54 @@ static void CurveGrid(const CurveFrame *F, double P[NG][3])
   }
 }
 
-static void CoonsStart(const Patch *p, const CoonsFrame *F, const double y[3], CoonsGrid *g, double z[2])
+static void CoonsGridPoints(const Patch *p, const CoonsFrame *F, double X[NG][NG][3])
 {
-  double        C0[NG][3], C1[NG][3], D0[NG][3], D1[NG][3], best = HUGE_VAL;
+  double        C0[NG][3], C1[NG][3], D0[NG][3], D1[NG][3];
   const double *P00 = p->C0.a, *P10 = p->C0.b, *P01 = p->C1.a, *P11 = p->C1.b;
   CurveGrid(&F->f[0], C0);
   CurveGrid(&F->f[1], C1);
   CurveGrid(&F->f[2], D0);
   CurveGrid(&F->f[3], D1);
-  g->ia = g->ib = 0;
   for (int a = 0; a < NG; a++) {
     const double u = (double)a / (NG - 1);
     for (int b = 0; b < NG; b++) {
       const double v = (double)b / (NG - 1), w00 = (1 - u) * (1 - v), w10 = u * (1 - v), w01 = (1 - u) * v, w11 = u * v;
-      double      *X = g->X[a][b];
-      for (int i = 0; i < 3; i++) X[i] = (1 - v) * C0[a][i] + v * C1[a][i] + (1 - u) * D0[b][i] + u * D1[b][i] - (w00 * P00[i] + w10 * P10[i] + w01 * P01[i] + w11 * P11[i]);
-      g->d2[a][b] = Dist2(X, y);
+      for (int i = 0; i < 3; i++) X[a][b][i] = (1 - v) * C0[a][i] + v * C1[a][i] + (1 - u) * D0[b][i] + u * D1[b][i] - (w00 * P00[i] + w10 * P10[i] + w01 * P01[i] + w11 * P11[i]);
+    }
+  }
+}
+
+static void CoonsStart(const Patch *p, const CoonsFrame *F, const double y[3], CoonsGrid *g, double z[2])
+{
+  double best = HUGE_VAL;
+  if (p->prepared) g->X = p->grid;
+  else {
+    CoonsGridPoints(p, F, g->Xown);
+    g->X = (const double(*)[NG][3])g->Xown;
+  }
+  g->ia = g->ib = 0;
+  for (int a = 0; a < NG; a++)
+    for (int b = 0; b < NG; b++) {
+      g->d2[a][b] = Dist2(g->X[a][b], y);
       if (g->d2[a][b] < best) {
         best  = g->d2[a][b];
         g->ia = a;
         g->ib = b;
       }
     }
-  }
   z[0] = (double)g->ia / (NG - 1);
   z[1] = (double)g->ib / (NG - 1);
+}
+
+void PatchPrepare(Patch *p)
+{
+  p->prepared = 0;
+  if (p->type != PATCH_COONS) return;
+  CoonsFrame F;
+  CoonsSetup(p, &F);
+  for (int k = 0; k < 4; k++) p->frame[k] = F.f[k];
+  CoonsGridPoints(p, &F, p->grid);
+  p->prepared = 1;
 }
 
 /* A second start: the best sample at least two cells away from the best one whose point differs
@@ -787,6 +809,66 @@ int ToolProject(const Tool *t, const double shift[3], const double y[3], double 
   return 0;
 }
 
+/* The free parameters' derivatives dz/dy at a projection from the stationarity x_i.(x - y) = 0 of
+   the free ones: H dz = x_i^T dy, H_ij = x_i.x_j + (x - y).x_ij. fr: which parameters are free.
+   Returns 1 if H is not positive definite. */
+static int ProjectionParamDerivative(const double xu[3], const double xv[3], const double xuu[3], const double xuv[3], const double xvv[3], const double r[3], const int fr[2], double dz[2][3])
+{
+  const double H[3] = {Dot(xu, xu) + Dot(r, xuu), Dot(xu, xv) + Dot(r, xuv), Dot(xv, xv) + Dot(r, xvv)};
+  for (int j = 0; j < 3; j++) dz[0][j] = dz[1][j] = 0.0;
+  if (fr[0] && fr[1]) {
+    const double det = H[0] * H[2] - H[1] * H[1];
+    if (!(det > 0.0)) return 1;
+    for (int j = 0; j < 3; j++) {
+      dz[0][j] = (H[2] * xu[j] - H[1] * xv[j]) / det;
+      dz[1][j] = (H[0] * xv[j] - H[1] * xu[j]) / det;
+    }
+  } else if (fr[0] || fr[1]) {
+    const int     i  = fr[0] ? 0 : 1;
+    const double  a  = i ? H[2] : H[0];
+    const double *xi = i ? xv : xu;
+    if (!(a > 0.0)) return 1;
+    for (int j = 0; j < 3; j++) dz[i][j] = xi[j] / a;
+  }
+  return 0;
+}
+
+/* Coons: n = sense N/|N|, N = x_xi x x_eta, so dn/dxi = sense (I - n n)(x_xixi x x_eta + x_xi x
+   x_xieta)/|N| (and likewise for eta), chained with dz/dy. Both parameters are free at an interior
+   projection (on a seam too: the patch extends smoothly), one at a projection held on an edge,
+   none at a corner. */
+static int CoonsNormalDerivative(const Patch *p, const double shift[3], const double y[3], const Projection *pr, double dn[9])
+{
+  const double z[2] = {pr->xi, pr->eta};
+  double       x[3], xu[3], xv[3], xuu[3], xuv[3], xvv[3], r[3], N[3], Nu[3], Nv[3], a[3], b[3], n[3], l, dz[2][3];
+  int          fr[2];
+  for (int i = 0; i < 2; i++) fr[i] = pr->interior || (z[i] > 0.0 && z[i] < 1.0);
+  if (!fr[0] && !fr[1]) return 0;
+  PatchEval(p, z[0], z[1], x, xu, xv, xuu, xuv, xvv);
+  Cross(xu, xv, N);
+  l = Norm(N);
+  if (!(l > 1e-10 * (Dot(xu, xu) + Dot(xv, xv)))) return 1; /* collapsed side */
+  for (int i = 0; i < 3; i++) {
+    n[i] = N[i] / l;
+    r[i] = x[i] - (y[i] - shift[i]);
+  }
+  if (ProjectionParamDerivative(xu, xv, xuu, xuv, xvv, r, fr, dz)) return 1;
+  Cross(xuu, xv, a);
+  Cross(xu, xuv, b);
+  for (int i = 0; i < 3; i++) Nu[i] = a[i] + b[i];
+  Cross(xuv, xv, a);
+  Cross(xu, xvv, b);
+  for (int i = 0; i < 3; i++) Nv[i] = a[i] + b[i];
+  {
+    const double s = p->sense < 0 ? -1.0 : 1.0, pu = Dot(n, Nu), pv = Dot(n, Nv);
+    for (int i = 0; i < 3; i++) {
+      const double nu = s * (Nu[i] - pu * n[i]) / l, nv = s * (Nv[i] - pv * n[i]) / l;
+      for (int j = 0; j < 3; j++) dn[3 * i + j] = nu * dz[0][j] + nv * dz[1][j];
+    }
+  }
+  return 0;
+}
+
 /* dn/dy. Interior projections of the analytic surfaces in closed form (n = s m, m the unit radial
    direction of the offset surface through y: d(m)/dy = (I - m m) d(y - q)/dy / |y - q|, q the
    centre, the axis point or the core-circle point). Projections held on an edge: n(xi(y), eta(y))
@@ -796,7 +878,7 @@ int PatchNormalDerivative(const Patch *p, const double shift[3], const double y[
   const double s = (p->sense < 0 ? -1.0 : 1.0) * Sgn((p->t1 - p->t0) * (p->s1 - p->s0));
   double       d[3], m[3], P[9];
   for (int i = 0; i < 9; i++) dn[i] = 0.0;
-  if (p->type == PATCH_COONS) return 1;
+  if (p->type == PATCH_COONS) return CoonsNormalDerivative(p, shift, y, pr, dn);
   if (p->type == PATCH_PLANE) return 0;
   for (int i = 0; i < 3; i++) d[i] = y[i] - shift[i] - p->c[i];
   if (pr->interior) {
@@ -838,16 +920,13 @@ int PatchNormalDerivative(const Patch *p, const double shift[3], const double y[
   /* held on an edge or at a corner */
   {
     const double dt = p->t1 - p->t0, ds = p->s1 - p->s0;
-    double       x[3], xu[3], xv[3], xuu[3], xuv[3], xvv[3], r[3], nu[3] = {0, 0, 0}, nv[3] = {0, 0, 0}, H[3], w[3], wp[3];
+    double       x[3], xu[3], xv[3], xuu[3], xuv[3], xvv[3], r[3], nu[3] = {0, 0, 0}, nv[3] = {0, 0, 0}, w[3], wp[3];
     int          fr[2];
     const double z[2] = {pr->xi, pr->eta};
     for (int i = 0; i < 2; i++) fr[i] = z[i] > 0.0 && z[i] < 1.0;
     if (!fr[0] && !fr[1]) return 0;
     PatchEval(p, z[0], z[1], x, xu, xv, xuu, xuv, xvv);
     for (int i = 0; i < 3; i++) r[i] = x[i] - (y[i] - shift[i]);
-    H[0] = Dot(xu, xu) + Dot(r, xuu);
-    H[1] = Dot(xu, xv) + Dot(r, xuv);
-    H[2] = Dot(xv, xv) + Dot(r, xvv);
     /* dn/dxi, dn/deta */
     if (p->type == PATCH_SPHERE) {
       for (int i = 0; i < 3; i++) {
@@ -864,21 +943,8 @@ int PatchNormalDerivative(const Patch *p, const double shift[3], const double y[
         nv[i] = s * xv[i] / p->r;
       }
     }
-    double dz[2][3] = {{0, 0, 0}, {0, 0, 0}};
-    if (fr[0] && fr[1]) {
-      const double det = H[0] * H[2] - H[1] * H[1];
-      if (!(det > 0.0)) return 0;
-      for (int j = 0; j < 3; j++) {
-        dz[0][j] = (H[2] * xu[j] - H[1] * xv[j]) / det;
-        dz[1][j] = (H[0] * xv[j] - H[1] * xu[j]) / det;
-      }
-    } else {
-      const int     i  = fr[0] ? 0 : 1;
-      const double  a  = i ? H[2] : H[0];
-      const double *xi = i ? xv : xu;
-      if (!(a > 0.0)) return 0;
-      for (int j = 0; j < 3; j++) dz[i][j] = xi[j] / a;
-    }
+    double dz[2][3];
+    if (ProjectionParamDerivative(xu, xv, xuu, xuv, xvv, r, fr, dz)) return 0;
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 3; j++) dn[3 * i + j] = nu[i] * dz[0][j] + nv[i] * dz[1][j];
   }
@@ -1224,6 +1290,7 @@ PetscErrorCode ToolsCreateFromOptions(MPI_Comm comm, PetscInt *ntools, Tool **to
       char pp[PETSC_MAX_PATH_LEN];
       PetscCall(PetscSNPrintf(pp, sizeof(pp), "%s_patch%" PetscInt_FMT, pre, j));
       PetscCall(GetPatch(comm, pp, &t->patch[j]));
+      PatchPrepare(&t->patch[j]);
     }
     for (int i = 0; i < 3; i++) {
       t->bbox[2 * i]     = HUGE_VAL;
