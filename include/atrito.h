@@ -47,6 +47,8 @@ typedef struct {
   PetscReal load_dt0, load_dt_min, load_dt_max, load_cut, load_grow;
   PetscInt  load_grow_its, load_max_cuts, load_max_steps;
   Predictor load_predictor;
+  PetscInt  stall_its;    /* Newton has stalled when |R| did not fall below stall_factor times */
+  PetscReal stall_factor; /* its value stall_its iterations earlier (0: no test)              */
   /* contact */
   char       contact_set[8][ATRITO_NAME_LEN]; /* slave nodes: the union of these sets       */
   PetscInt   ncontact_set;
@@ -144,6 +146,9 @@ typedef struct {
   PetscInt  ndomain_err;   /* failed element evaluations in the last residual           */
   PetscInt  bad_cell_id;   /* source id of the first failing element, for messages      */
   PetscInt  bad_status;
+  PetscBool stalled;          /* the last Newton solve stopped as stalled                  */
+  PetscReal stall_fnorm;      /* its |R| then                                               */
+  PetscReal fnorm_hist[256];  /* |R| of its iterations                                      */
 
   /* contact: tools (replicated), owned slave vertices and their states */
   PetscInt      ntools;

@@ -1,5 +1,8 @@
-"""Helpers shared by the measurement scripts (bench_assembly.py, scaling.py, sweep.py)."""
+"""Helpers shared by the measurement scripts (bench_assembly.py, bench_pairing.py, bench_memory.py,
+scaling.py, sweep.py)."""
+import datetime
 import os
+import re
 import resource
 import shutil
 import subprocess
@@ -70,3 +73,44 @@ def snapshot_binary(path, where, wait=120.0, who="benchmark", note=print):
             sys.exit(f"{who}: {path} is missing or keeps changing (run make)")
         note(f"waiting for {path} (missing or being rebuilt)")
         time.sleep(5)
+
+
+def run_env():
+    """environment of a measured run: one BLAS thread per rank, Open MPI allowed as root"""
+    env = dict(os.environ)
+    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    return env
+
+
+def _sh(cmd, cwd):
+    try:
+        return subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, timeout=60).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return ""
+
+
+def machine_info(root):
+    """the machine and the source state a measurement ran on (cpu, cores, mem, mpi, kernel,
+    commit, dirty: changed files under src, include, Makefile; date)"""
+    info = dict(cpu="unknown", cores=os.cpu_count() or 1, mem="unknown")
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    info["cpu"] = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    try:
+        with open("/proc/meminfo") as f:
+            kb = int(re.search(r"MemTotal:\s+(\d+)", f.read()).group(1))
+        info["mem"] = f"{kb / 1024**2:.1f} GiB"
+    except (OSError, AttributeError):
+        pass
+    info["mpi"] = (_sh(["mpiexec", "--version"], root).splitlines() or ["unknown"])[0]
+    info["kernel"] = _sh(["uname", "-r"], root)
+    info["commit"] = _sh(["git", "rev-parse", "--short", "HEAD"], root) or "unknown"
+    dirty = _sh(["git", "status", "--porcelain", "--", "src", "include", "Makefile"], root)
+    info["dirty"] = [l[3:] for l in dirty.splitlines() if len(l) > 3]
+    info["date"] = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    return info

@@ -63,6 +63,8 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
   cs->load_grow          = 1.5;
   cs->load_grow_its      = 5;
   cs->load_max_cuts      = 10;
+  cs->stall_its          = 6;
+  cs->stall_factor       = 0.9;
   cs->load_max_steps     = 100000;
   cs->load_predictor     = PREDICTOR_AUTO;
   cs->output_interval    = 1;
@@ -203,6 +205,8 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
     PetscCall(PetscOptionsInt("-load_grow_its", "A step is easy when Newton took at most this many iterations", NULL, cs->load_grow_its, &cs->load_grow_its, NULL));
     PetscCall(PetscOptionsInt("-load_max_cuts", "Successive cuts allowed in one step", NULL, cs->load_max_cuts, &cs->load_max_cuts, NULL));
     PetscCall(PetscOptionsInt("-load_max_steps", "Largest number of converged steps", NULL, cs->load_max_steps, &cs->load_max_steps, NULL));
+    PetscCall(PetscOptionsInt("-newton_stall_its", "Newton has stalled (the step fails at once) when |R| has not fallen below -newton_stall_factor times its value this many iterations earlier (0: never)", NULL, cs->stall_its, &cs->stall_its, NULL));
+    PetscCall(PetscOptionsReal("-newton_stall_factor", "See -newton_stall_its", NULL, cs->stall_factor, &cs->stall_factor, NULL));
     {
       const char *preds[] = {"none", "extrapolate", "tangent", "auto", "Predictor", "PREDICTOR_", NULL};
       PetscInt    p       = (PetscInt)cs->load_predictor;
@@ -215,6 +219,8 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
     PetscCheck(cs->load_grow >= 1 && PetscIsNormalReal(cs->load_grow), comm, PETSC_ERR_USER_INPUT, "-load_grow_factor %g must be >= 1", (double)cs->load_grow);
     PetscCheck(cs->load_max_cuts >= 0, comm, PETSC_ERR_USER_INPUT, "-load_max_cuts %" PetscInt_FMT " must be >= 0", cs->load_max_cuts);
     PetscCheck(cs->load_max_steps >= 1, comm, PETSC_ERR_USER_INPUT, "-load_max_steps %" PetscInt_FMT " must be >= 1", cs->load_max_steps);
+    PetscCheck(cs->stall_its >= 0 && cs->stall_its < 256, comm, PETSC_ERR_USER_INPUT, "-newton_stall_its %" PetscInt_FMT " must lie in [0, 255]", cs->stall_its);
+    PetscCheck(cs->stall_factor > 0 && cs->stall_factor <= 1, comm, PETSC_ERR_USER_INPUT, "-newton_stall_factor %g must lie in (0, 1]", (double)cs->stall_factor);
 
     /* contact */
     {

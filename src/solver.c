@@ -394,6 +394,27 @@ static PetscErrorCode TangentPredictor(Problem *pb, SNES snes, Mat J, Vec R, Vec
   PetscFunctionReturn(0);
 }
 
+/* PETSc's convergence test, and a stall test: the iteration stops as diverged when |R| has not
+   fallen below stall_factor times its value stall_its iterations earlier (a step whose active set
+   or stick/slip pattern keeps Newton from making progress is cut at once instead of running to the
+   iteration limit) */
+static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
+{
+  Problem       *pb = (Problem *)ctx;
+  const PetscInt w  = pb->cs->stall_its;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, NULL));
+  if (it == 0) pb->stalled = PETSC_FALSE;
+  if (it < 256) pb->fnorm_hist[it] = fnorm;
+  if (*reason == SNES_CONVERGED_ITERATING && w > 0 && it >= w && it < 256 && !(fnorm < pb->cs->stall_factor * pb->fnorm_hist[it - w])) {
+    *reason         = SNES_DIVERGED_DTOL;
+    pb->stalled     = PETSC_TRUE;
+    pb->stall_fnorm = fnorm;
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Start of every Newton iteration: the frame recurrence of eq 30 at the current iterate */
 static PetscErrorCode NewtonUpdate(SNES snes, PetscInt it)
 {
@@ -493,7 +514,9 @@ static PetscErrorCode LocalWithBC(Problem *pb, Vec U, PetscReal lambda)
 
 static const char *FailureCause(Problem *pb, SNESConvergedReason reason, char *buf, size_t len)
 {
-  if (reason == SNES_DIVERGED_INNER && pb->bad_status < 0) snprintf(buf, len, "contact chattering: %d nodes still entering or leaving contact at the last Newton iteration (node id %d)", (int)-pb->bad_status, (int)pb->bad_cell_id);
+  if (reason == SNES_DIVERGED_DTOL && pb->stalled)
+    snprintf(buf, len, "Newton stalled (|R| %.3g did not fall below %g times its value %d iterations earlier, -newton_stall_its)", (double)pb->stall_fnorm, (double)pb->cs->stall_factor, (int)pb->cs->stall_its);
+  else if (reason == SNES_DIVERGED_INNER && pb->bad_status < 0) snprintf(buf, len, "contact chattering: %d nodes still entering or leaving contact at the last Newton iteration (node id %d)", (int)-pb->bad_status, (int)pb->bad_cell_id);
   else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN || pb->ndomain_err) {
     if (pb->bad_status == MAT_ERR_RETURNMAP) snprintf(buf, len, "the local return map did not converge (element id %d)", (int)pb->bad_cell_id);
     else if (pb->bad_status == ATRITO_ERR_PROJECTION) snprintf(buf, len, "the projection of a slave node on a tool failed");
@@ -617,6 +640,7 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(SNESSetConvergenceHistory(snes, rhist, itshist, 256, PETSC_TRUE));
   PetscCall(SNESSetApplicationContext(snes, pb));
   PetscCall(SNESSetUpdate(snes, NewtonUpdate));
+  PetscCall(SNESSetConvergenceTest(snes, NewtonConverged, pb, NULL));
   PetscCall(SNESSetFromOptions(snes));
 
   /* the initial state */

@@ -93,6 +93,10 @@ atrito 1 cut_newton -options_file cases/tension_bar.opts -load_steps 1 -snes_max
   n=$(grep -c "retrying with increment" "$OUT/cut_newton.log") && g=$(grep -c "did not converge in the allowed iterations" "$OUT/cut_newton.log") &&
   [ "$n" -ge 1 ] && [ "$g" -ge 1 ] && $PY tests/check_tension.py "$OUT/cut_newton/history.csv" pull_fx 1 10 3 $SWIFT 1e-6 | sed "s/^\(n*o*t* *ok\) - /\1 - after $n cuts (Newton iteration limit): /" ||
   echo "not ok - Newton failure was not retried"
+atrito 1 cut_stall -options_file cases/tension_bar.opts -load_steps 1 -newton_stall_its 1 -newton_stall_factor 1e-3 -output_interval 0 &&
+  n=$(grep -c "Newton stalled (|R| .* did not fall below 0.001 times its value 1 iterations earlier, -newton_stall_its); retrying" "$OUT/cut_stall.log") && [ "$n" -ge 1 ] &&
+  $PY tests/check_tension.py "$OUT/cut_stall/history.csv" pull_fx 1 10 3 $SWIFT 1e-6 | sed "s/^\(n*o*t* *ok\) - /\1 - after $n cuts (Newton stalled): /" ||
+  echo "not ok - a stalled Newton solve was not cut"
 atrito 1 cut_retmap -options_file cases/tension_bar.opts -load_steps 1 -material_return_maxit 3 -output_interval 0 &&
   n=$(grep -c "the local return map did not converge (element id [0-9]*); retrying" "$OUT/cut_retmap.log") && [ "$n" -ge 1 ] &&
   $PY tests/check_tension.py "$OUT/cut_retmap/history.csv" pull_fx 1 10 3 $SWIFT 1e-6 | sed "s/^\(n*o*t* *ok\) - /\1 - after $n cuts (return map failure): /" ||

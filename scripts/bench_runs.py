@@ -1,0 +1,155 @@
+#!/usr/bin/python3
+"""Run times of the hemispherical punch benchmark against the speed targets.
+
+  /usr/bin/python3 scripts/bench_runs.py [--reps N] [--xfine] [--efficiency] [--output doc/performance.md]
+
+What it does
+  1. Runs the two main seed-mesh cases (cases/hemisphere_frictionless.opts and
+     cases/hemisphere_friction.opts: 301 hexahedra, Coons tools, 40 mm of punch travel) --reps
+     times each (default 5, interleaved) on one rank. Target: under 5 s each.
+  2. --xfine: the extra-fine case with friction (cases/hemisphere_friction_xfine.opts, 20400
+     hexahedra, Coons tools, 40 mm) once on 2 ranks. Target: under 10 minutes.
+  3. --efficiency: the same case shortened to 8 mm of travel in 4 steps of 2 mm (the first steps
+     of the full run), twice on 1 and on 2 ranks (interleaved): the parallel efficiency at 2 ranks
+     (target 80 %), overall and per event.
+  4. Every run: -output_interval 0 (no field output) and -log_view; the wall time is the program's
+     own (the "done:" line: all load steps, without start-up); the other load on the machine during
+     the run is measured from /proc/stat.
+  5. Writes the section "## Benchmark run times" of the output file, keeping its other sections.
+
+Standard library only; OPENBLAS_NUM_THREADS=1 and the Open MPI run-as-root variables set.
+"""
+import argparse
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import benchutil
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+HEADING = "## Benchmark run times"
+SEED = ["hemisphere_frictionless", "hemisphere_friction"]
+XFINE = "hemisphere_friction_xfine"
+
+DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
+MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
+EV_RE = {e: re.compile(r"^" + e + r"\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)", re.M)
+         for e in ("AtritoResidual", "AtritoJacobian", "AtritoContact", "MatLUFactorNum", "SNESSolve")}
+
+
+def log(msg):
+    print(f"[bench_runs {time.strftime('%H:%M:%S')}] {msg}", file=sys.stderr, flush=True)
+
+
+SHORT = ["-tool_punch_motion", "0,0,8", "-load_steps", "4", "-load_dt_max", "0.25"]
+
+
+def run(binary, case, ranks, outdir, timeout, extra=()):
+    cmd = [] if ranks == 1 else ["mpiexec", "--oversubscribe", "-n", str(ranks)]
+    cmd += [binary, "-options_file", os.path.join("cases", case + ".opts"), "-output_dir", outdir, "-output_interval", "0", "-log_view"] + list(extra)
+    b0, c0, t0 = benchutil.cpu_busy_seconds(), benchutil.children_cpu(), time.monotonic()
+    try:
+        r = subprocess.run(cmd, cwd=ROOT, env=benchutil.run_env(), capture_output=True, text=True, timeout=timeout)
+        out, rc = r.stdout + r.stderr, r.returncode
+    except subprocess.TimeoutExpired as e:
+        out, rc = (e.stdout or b"").decode() if isinstance(e.stdout, bytes) else (e.stdout or ""), "timeout"
+    wall = time.monotonic() - t0
+    b1, c1 = benchutil.cpu_busy_seconds(), benchutil.children_cpu()
+    other = max(0.0, ((b1 - b0) - (c1 - c0)) / wall) if b0 is not None and wall > 0 else None
+    d, me = DONE_RE.search(out), MESH_RE.search(out)
+    if rc != 0 or not d:
+        tail = " / ".join(out.strip().splitlines()[-3:])
+        return dict(case=case, ranks=ranks, error=f"exit {rc}: {tail}", wall=wall, other=other)
+    ev = {e: float(m.group(2)) for e, rx in EV_RE.items() if (m := rx.search(out))}
+    return dict(case=case, ranks=ranks, cells=int(me.group(2)) if me else None, steps=int(d.group(1)), its=int(d.group(2)),
+                cuts=int(d.group(3)), time=float(d.group(4)), wall=wall, other=other, events=ev)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--reps", type=int, default=5, help="runs of each seed case (default 5)")
+    ap.add_argument("--xfine", action="store_true", help="also the 20400-hexahedra friction case on 2 ranks")
+    ap.add_argument("--efficiency", action="store_true", help="the 20400-hexahedra case to 8 mm on 1 and 2 ranks")
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    a = ap.parse_args()
+    if a.reps < 1:
+        sys.exit("bench_runs: --reps must be >= 1")
+    if subprocess.run(["make", "-s", "all"], cwd=ROOT).returncode:
+        sys.exit("bench_runs: make failed")
+    work = tempfile.mkdtemp(prefix="bench_runs_")
+    recs = []
+    try:
+        binary, _, _ = benchutil.snapshot_binary(os.path.join(ROOT, "bin", "atrito"), work, who="bench_runs", note=log)
+        plan = [(c, 1, 600, False) for _ in range(a.reps) for c in SEED]
+        if a.xfine:
+            plan.append((XFINE, 2, 3600, False))
+        if a.efficiency:
+            plan += [(XFINE, p, 3600, True) for _ in range(2) for p in (1, 2)]
+        for i, (case, ranks, timeout, short) in enumerate(plan):
+            rec = run(binary, case, ranks, os.path.join(work, f"run{i}"), timeout, SHORT if short else ())
+            rec["short"] = short
+            if "error" in rec:
+                log(f"{case} np={ranks}: FAILED ({rec['error']})")
+            else:
+                log(f"{case} np={ranks}: {rec['time']:.2f} s, {rec['steps']} steps, {rec['its']} Newton its, other load {rec['other'] or 0:.2f}")
+            recs.append(rec)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+    mi = benchutil.machine_info(ROOT)
+    L = [HEADING, "",
+         f"Measured by `scripts/bench_runs.py` on {mi['date']}: {mi['cpu']}, {mi['cores']} cores, {mi['mem']}; "
+         f"commit {mi['commit']}{' (with local changes)' if mi['dirty'] else ''}. Full runs to 40 mm of punch travel, "
+         "no field output; time = the program's own (all load steps, after start-up); median [min – max] of the runs.",
+         "",
+         "| case | hexahedra | ranks | runs | steps | Newton its | cuts | time s | target | met | other load (cores, max) |",
+         "|---|---|---|---|---|---|---|---|---|---|---|"]
+    groups = {}
+    for r in recs:
+        if not r["short"]:
+            groups.setdefault((r["case"], r["ranks"]), []).append(r)
+    med = {}
+    for (case, ranks), rs in groups.items():
+        ok = [r for r in rs if "error" not in r]
+        target = 5.0 if case in SEED else (600.0 if ranks == 2 else None)
+        tgt = f"< {target:g} s" if target else "–"
+        if not ok:
+            L.append(f"| {case} | – | {ranks} | {len(rs)} | failed: {rs[0]['error'][:100]} | | | | {tgt} | no | |")
+            continue
+        t = [r["time"] for r in ok]
+        m = statistics.median(t)
+        med[(case, ranks)] = (m, ok[0])
+        met = "–" if target is None else ("yes" if m < target and len(ok) == len(rs) else "no")
+        L.append(f"| {case} | {ok[0]['cells']} | {ranks} | {len(ok)}/{len(rs)} | {ok[0]['steps']} | {ok[0]['its']} | {ok[0]['cuts']} | "
+                 f"{m:.2f} [{min(t):.2f} – {max(t):.2f}] | {tgt} | {met} | {max((r['other'] or 0) for r in rs):.2f} |")
+    L += ["", "The seed paper reports 226 (frictionless) and 248 (friction) Newton iterations for its seed-size mesh."]
+    sh = {p: [r for r in recs if r["short"] and r["ranks"] == p and "error" not in r] for p in (1, 2)}
+    if sh[1] and sh[2]:
+        t1, t2 = statistics.median(r["time"] for r in sh[1]), statistics.median(r["time"] for r in sh[2])
+        eff = t1 / (2 * t2)
+        L += ["", f"Parallel efficiency at 2 ranks: `{XFINE}` ({sh[1][0]['cells']} hexahedra) to 8 mm of travel in 4 steps "
+              f"of 2 mm, {len(sh[1])} and {len(sh[2])} runs: 1 rank {t1:.1f} s, 2 ranks {t2:.1f} s (medians), speedup "
+              f"{t1 / t2:.2f}, efficiency {100 * eff:.0f} % (target 80 %: {'met' if eff >= 0.8 else 'not met'}); Newton "
+              f"iterations {sh[1][0]['its']} and {sh[2][0]['its']}; other load at most "
+              f"{max((r['other'] or 0) for r in sh[1] + sh[2]):.2f} cores."]
+        rows = []
+        for e in ("AtritoJacobian", "AtritoResidual", "AtritoContact", "MatLUFactorNum", "SNESSolve"):
+            e1 = [r["events"][e] for r in sh[1] if e in r["events"]]
+            e2 = [r["events"][e] for r in sh[2] if e in r["events"]]
+            if e1 and e2 and statistics.median(e2) > 0:
+                m1, m2 = statistics.median(e1), statistics.median(e2)
+                rows.append(f"{e} {100 * m1 / (2 * m2):.0f} % ({100 * m1 / t1:.0f} % of the 1-rank time)")
+        if rows:
+            L.append("Per event (efficiency; share of the 1-rank run): " + "; ".join(rows) + ".")
+    L.append("")
+    benchutil.write_doc_section(a.output, HEADING, "\n".join(L) + "\n")
+    log(f"wrote {HEADING!r} to {a.output}")
+
+
+if __name__ == "__main__":
+    main()
