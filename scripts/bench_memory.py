@@ -1,15 +1,15 @@
 #!/usr/bin/python3
 """Memory: peak resident size per 100 000 hexahedra with the direct and the iterative solver.
 
-  /usr/bin/python3 scripts/bench_memory.py [--quick] [--output doc/performance.md]
+  /usr/bin/python3 scripts/bench_memory.py [--quick] [--two-ranks] [--output doc/performance.md]
 
 What it does
   1. Runs the friction benchmark (cases/hemisphere_friction.opts, Coons tools) on 4-layer blanks
      of about 25 000, 50 000 and 100 000 hexahedra for one load step (punch travel 1 mm: contact
      at the pole, plasticity starting), with -memory_view, once with the default solver (LU by
      MUMPS) and once with GMRES + GAMG (-ksp_type gmres -pc_type gamg -ksp_rtol 1e-8, the
-     rigid-body near-null space set by the code); one rank, and the largest mesh on 2 ranks too.
-     --quick: the two smaller meshes only.
+     rigid-body near-null space set by the code); one rank (--two-ranks: the largest mesh on 2
+     ranks too). --quick: the two smaller meshes only.
   2. Reads PETSc's "Maximum (over computational time) process memory" (the peak resident set
      size, summed over the ranks) and reports it, and per 100 000 hexahedra.
   3. Writes the section "## Memory" of the output file, keeping its other sections.
@@ -66,16 +66,15 @@ def run(binary, mesh, solver_args, ranks, outdir):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="the two smaller meshes only")
+    ap.add_argument("--two-ranks", action="store_true", help="the largest mesh on 2 ranks too")
     ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
     a = ap.parse_args()
-    if subprocess.run(["make", "-s", "all"], cwd=ROOT).returncode:
-        sys.exit("bench_memory: make failed")
     meshes = MESHES[:2] if a.quick else MESHES
-    plan = [(m, s, 1) for m in meshes for s in SOLVERS] + ([] if a.quick else [(meshes[-1], s, 2) for s in SOLVERS])
+    plan = [(m, s, 1) for m in meshes for s in SOLVERS] + ([(meshes[-1], s, 2) for s in SOLVERS] if a.two_ranks else [])
     work = tempfile.mkdtemp(prefix="bench_memory_")
     rows = []
     try:
-        binary, _, _ = benchutil.snapshot_binary(os.path.join(ROOT, "bin", "atrito"), work, who="bench_memory", note=log)
+        binary = benchutil.build_and_snapshot(ROOT, work, "bench_memory", log)
         for i, (m, (sname, sargs), ranks) in enumerate(plan):
             rec = run(binary, m, sargs, ranks, os.path.join(work, f"run{i}"))
             rec.update(mesh=m, solver=sname, ranks=ranks)
@@ -88,10 +87,8 @@ def main():
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
-    mi = benchutil.machine_info(ROOT)
     L = [HEADING, "",
-         f"Measured by `scripts/bench_memory.py` on {mi['date']}: {mi['cpu']}, {mi['cores']} cores, {mi['mem']}; "
-         f"commit {mi['commit']}{' (with local changes)' if mi['dirty'] else ''}.",
+         benchutil.measured_by("bench_memory.py", ROOT),
          "",
          f"The friction benchmark (`{CASE}`, Coons tools) on 4-layer blanks, one load step (punch travel 1 mm: contact "
          "at the pole, plastic flow starting). Peak resident set size as PETSc reports it (`-memory_view`: \"Maximum "

@@ -71,11 +71,9 @@ def main():
     a = ap.parse_args()
     if a.reps < 1:
         sys.exit("bench_pairing: --reps must be >= 1")
-    if subprocess.run(["make", "-s", "all"], cwd=ROOT).returncode:
-        sys.exit("bench_pairing: make failed")
     work = tempfile.mkdtemp(prefix="bench_pairing_")
     try:
-        binary, bdir, _ = benchutil.snapshot_binary(os.path.join(ROOT, "bin", "atrito"), work, who="bench_pairing", note=log)
+        binary = benchutil.build_and_snapshot(ROOT, work, "bench_pairing", log)
         rows = []
         for k in SIZES:
             recs = []
@@ -89,11 +87,9 @@ def main():
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
-    mi = benchutil.machine_info(ROOT)
     base = statistics.median(r["per_node"] for r in rows[0])
     L = [HEADING, "",
-         f"Measured by `scripts/bench_pairing.py` on {mi['date']}: {mi['cpu']}, {mi['cores']} cores, {mi['mem']}; "
-         f"commit {mi['commit']}{' (with local changes)' if mi['dirty'] else ''}; one rank, {a.reps} runs per mesh.",
+         benchutil.measured_by("bench_pairing.py", ROOT) + f" One rank, {a.reps} runs per mesh.",
          "",
          f"The friction benchmark's geometry (`{CASE}`: punch of 27 Coons patches and a plane, die fillet of 4 Coons "
          "patches) on one-layer blanks refined in the plane; every vertex is a slave node (bottom face on the punch, "

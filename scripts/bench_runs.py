@@ -79,12 +79,10 @@ def main():
     a = ap.parse_args()
     if a.reps < 1:
         sys.exit("bench_runs: --reps must be >= 1")
-    if subprocess.run(["make", "-s", "all"], cwd=ROOT).returncode:
-        sys.exit("bench_runs: make failed")
     work = tempfile.mkdtemp(prefix="bench_runs_")
     recs = []
     try:
-        binary, _, _ = benchutil.snapshot_binary(os.path.join(ROOT, "bin", "atrito"), work, who="bench_runs", note=log)
+        binary = benchutil.build_and_snapshot(ROOT, work, "bench_runs", log)
         plan = [(c, 1, 600, False) for _ in range(a.reps) for c in SEED]
         if a.xfine:
             plan.append((XFINE, 2, 3600, False))
@@ -101,10 +99,8 @@ def main():
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
-    mi = benchutil.machine_info(ROOT)
     L = [HEADING, "",
-         f"Measured by `scripts/bench_runs.py` on {mi['date']}: {mi['cpu']}, {mi['cores']} cores, {mi['mem']}; "
-         f"commit {mi['commit']}{' (with local changes)' if mi['dirty'] else ''}. Full runs to 40 mm of punch travel, "
+         benchutil.measured_by("bench_runs.py", ROOT) + " Full runs to 40 mm of punch travel, "
          "no field output; time = the program's own (all load steps, after start-up); median [min – max] of the runs.",
          "",
          "| case | hexahedra | ranks | runs | steps | Newton its | cuts | time s | target | met | other load (cores, max) |",

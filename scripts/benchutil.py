@@ -114,3 +114,17 @@ def machine_info(root):
     info["dirty"] = [l[3:] for l in dirty.splitlines() if len(l) > 3]
     info["date"] = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
     return info
+
+
+def build_and_snapshot(root, work, who, note=print):
+    """make all (exits on failure), then a private copy of bin/atrito in work (snapshot_binary)"""
+    if subprocess.run(["make", "-s", "all"], cwd=root).returncode:
+        sys.exit(f"{who}: make failed")
+    return snapshot_binary(os.path.join(root, "bin", "atrito"), work, who=who, note=note)[0]
+
+
+def measured_by(script, root):
+    """the first line of a measurement section: script, date, machine, commit"""
+    mi = machine_info(root)
+    return (f"Measured by `scripts/{script}` on {mi['date']}: {mi['cpu']}, {mi['cores']} cores, {mi['mem']}; "
+            f"commit {mi['commit']}{' (with local changes)' if mi['dirty'] else ''}.")

@@ -63,7 +63,7 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
   cs->load_grow          = 1.5;
   cs->load_grow_its      = 5;
   cs->load_max_cuts      = 10;
-  cs->stall_its          = 6;
+  cs->stall_its          = 0;
   cs->stall_factor       = 0.9;
   cs->load_max_steps     = 100000;
   cs->load_predictor     = PREDICTOR_AUTO;
