@@ -265,38 +265,7 @@ def timed_run(cmd, timeout):
 
 # ---------------------------------------------------------------------------------- machine
 def machine_info():
-    info = {}
-    cpu = ""
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    info["cpu"] = cpu or "unknown"
-    info["cores"] = os.cpu_count()
-    try:
-        with open("/proc/meminfo") as f:
-            kb = int(re.search(r"MemTotal:\s+(\d+)", f.read()).group(1))
-        info["mem"] = f"{kb / 1024**2:.1f} GiB"
-    except (OSError, AttributeError):
-        info["mem"] = "unknown"
-    info["cc"] = (sh(["mpicc", "--version"]).splitlines() or ["unknown"])[0]
-    info["mpi"] = (sh(["mpiexec", "--version"]).splitlines() or ["unknown"])[0]
-    info["petsc_pc"] = sh(["pkg-config", "--modversion", "PETSc"]) or "unknown"
-    info["blas"] = os.path.realpath("/etc/alternatives/libblas.so.3-x86_64-linux-gnu") if os.path.exists("/etc/alternatives/libblas.so.3-x86_64-linux-gnu") else "unknown"
-    info["kernel"] = sh(["uname", "-r"])
-    info["commit"] = sh(["git", "rev-parse", "--short", "HEAD"]) or "unknown"
-    try:
-        dirty = subprocess.run(["git", "status", "--porcelain", "--", "src", "include", "Makefile"], cwd=ROOT,
-                               capture_output=True, text=True, timeout=60).stdout
-    except (OSError, subprocess.SubprocessError):
-        dirty = ""
-    info["dirty"] = [l[3:] for l in dirty.splitlines() if len(l) > 3]
-    info["date"] = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
-    return info
+    return benchutil.machine_info(ROOT)
 
 
 # ---------------------------------------------------------------------------------- application runs

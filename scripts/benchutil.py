@@ -90,8 +90,9 @@ def _sh(cmd, cwd):
 
 
 def machine_info(root):
-    """the machine and the source state a measurement ran on (cpu, cores, mem, mpi, kernel,
-    commit, dirty: changed files under src, include, Makefile; date)"""
+    """the machine and the source state a measurement ran on (cpu, cores, threads_per_core, virt,
+    mem, cc, mpi, petsc_pc, blas, kernel, commit, dirty: changed files under src, include,
+    Makefile; date)"""
     info = dict(cpu="unknown", cores=os.cpu_count() or 1, mem="unknown")
     try:
         with open("/proc/cpuinfo") as f:
@@ -107,7 +108,15 @@ def machine_info(root):
         info["mem"] = f"{kb / 1024**2:.1f} GiB"
     except (OSError, AttributeError):
         pass
+    lscpu = _sh(["lscpu"], root)
+    m = re.search(r"Thread\(s\) per core:\s+(\d+)", lscpu)
+    info["threads_per_core"] = int(m.group(1)) if m else None
+    info["virt"] = "KVM virtual machine" if "KVM" in lscpu else ""
+    info["cc"] = (_sh(["mpicc", "--version"], root).splitlines() or ["unknown"])[0]
     info["mpi"] = (_sh(["mpiexec", "--version"], root).splitlines() or ["unknown"])[0]
+    info["petsc_pc"] = _sh(["pkg-config", "--modversion", "PETSc"], root) or "unknown"
+    blas = "/etc/alternatives/libblas.so.3-x86_64-linux-gnu"
+    info["blas"] = os.path.realpath(blas) if os.path.exists(blas) else "unknown"
     info["kernel"] = _sh(["uname", "-r"], root)
     info["commit"] = _sh(["git", "rev-parse", "--short", "HEAD"], root) or "unknown"
     dirty = _sh(["git", "status", "--porcelain", "--", "src", "include", "Makefile"], root)

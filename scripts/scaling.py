@@ -96,42 +96,12 @@ def sh(cmd):
 
 
 def run_env():
-    env = dict(os.environ)
-    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
-    return env
+    return benchutil.run_env()
 
 
 # ------------------------------------------------------------------------------------ machine load
 def machine_info():
-    info = {}
-    cpu = ""
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    info["cpu"] = cpu or "unknown"
-    info["cores"] = os.cpu_count() or 1
-    lscpu = sh(["lscpu"])
-    m = re.search(r"Thread\(s\) per core:\s+(\d+)", lscpu)
-    info["threads_per_core"] = int(m.group(1)) if m else None
-    try:
-        with open("/proc/meminfo") as f:
-            kb = int(re.search(r"MemTotal:\s+(\d+)", f.read()).group(1))
-        info["mem"] = f"{kb / 1024**2:.1f} GiB"
-    except (OSError, AttributeError):
-        info["mem"] = "unknown"
-    info["mpi"] = (sh(["mpiexec", "--version"]).splitlines() or ["unknown"])[0]
-    info["kernel"] = sh(["uname", "-r"])
-    info["commit"] = sh(["git", "rev-parse", "--short", "HEAD"]) or "unknown"
-    dirty = sh(["git", "status", "--porcelain", "--", "src", "include", "Makefile"])
-    info["dirty"] = [l[3:] for l in dirty.splitlines() if len(l) > 3]
-    info["date"] = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
-    info["virt"] = "KVM virtual machine" if "KVM" in lscpu else ""
-    return info
+    return benchutil.machine_info(ROOT)
 
 
 # ------------------------------------------------------------------------------------ runs
