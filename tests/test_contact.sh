@@ -20,13 +20,20 @@ atrito 1 drag1 -options_file cases/block_plane_drag.opts && $PY tests/check_bloc
 atrito 2 drag2 -options_file cases/block_plane_drag.opts -output_interval 0
 $PY tests/compare_history.py "$OUT/drag1/contact.csv" "$OUT/drag2/contact.csv" 8 "block on a plane: contact history at np=1 and np=2"
 
-# 2. the exact Jacobian with contact, in stick and in slip, plane and sphere, analytic and
-#    finite-difference nodal tangents
-for tool in plane sphere; do
+# 2. the exact Jacobian with contact, in stick and in slip, plane, sphere and a Coons cap (four
+#    great-circle arcs about the sphere's pole, dn/dy from the patch's second derivatives),
+#    analytic and finite-difference nodal tangents
+C="-tool_ball_patch0_type coons -tool_ball_patch0_sense -1 -tool_ball_path 0,0,0,0,0.5,0,0,-0.25,1,0.2,0,-0.25"
+for side in bottom:-1.216741,-1.216741,1.542544,1.216741,-1.216741 top:-1.216741,1.216741,1.542544,1.216741,1.216741 \
+  left:-1.216741,-1.216741,1.542544,-1.216741,1.216741 right:1.216741,-1.216741,1.542544,1.216741,1.216741; do
+  C="$C -tool_ball_patch0_${side%%:*}_type arc -tool_ball_patch0_${side%%:*}_points ${side#*:},1.542544,0,0,4"
+done
+for tool in plane sphere coons; do
   for tan in analytic fd; do
     name=jac_${tool}_$tan
     if [ $tool = plane ]; then opts="-options_file cases/block_plane_drag.opts -output_interval 0 -box_cells 2,2,1"
-    else opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1"; fi
+    elif [ $tool = sphere ]; then opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1"
+    else opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 $C"; fi
     # shellcheck disable=SC2086
     atrito 1 $name $opts -contact_tangent $tan -snes_test_jacobian &&
       $PY - "$OUT/$name" "$tool" "$tan" <<'PYEOF'
