@@ -53,6 +53,7 @@ typedef struct {
   char       contact_set[8][ATRITO_NAME_LEN]; /* slave nodes: the union of these sets       */
   PetscInt   ncontact_set;
   ContactLaw law;
+  PetscBool  contact_per_area;   /* K_N, K_T per unit area, times each node's tributary area */
   PetscBool  contact_fd;         /* per-node finite-difference tangent instead of the analytic one */
   PetscReal  contact_search;     /* pairing: skip a tool whose box is farther than this      */
   PetscReal  symmetry;           /* multiplicity of the model (4 for a quarter)             */
@@ -124,6 +125,7 @@ typedef struct {
   PetscInt *node_src, *elem_src; /* 0-based position in the source mesh: the rank-independent
                                   numbering of the output and checkpoint rows              */
   PetscInt  nv_global, ne_global;
+  PetscReal *varea;    /* nv: tributary area on the contact faces (-contact_penalty_per_area), else NULL */
 
   /* output and checkpoint rows, in the source mesh's order */
   PetscInt  nvo;       /* owned vertices                                                 */
@@ -164,6 +166,7 @@ typedef struct {
   PetscReal     search;        /* pairing distance                                           */
   PetscBool    *active_prev;   /* ns: in contact at the start of the current Newton iteration */
   PairMemo     *pmemo;         /* ns: the last pairing of each node                          */
+  PetscReal    *karea;         /* ns: tributary area scaling the penalties (NULL: per node)  */
   PetscBool     fault_done;
 
   PetscLogEvent ev_residual, ev_jacobian, ev_contact, ev_pairing, ev_output;

@@ -42,4 +42,8 @@ int ContactReturnMap(const ContactLaw *law, const double tTn[2], const double dg
    node (g = 0) is active with zero force and full stiffness. */
 int ContactNodeEval(const ContactLaw *law, double g, const double n[3], const double *dn, const double s[3], const double tTn[2], const double ds[3], double R[3], double *K, double t1[3], double *tN, double tT[2]);
 
+/* Tributary areas of the corners of a 4-node face (corners in cyclic order): a_i = integral over
+   the bilinear face of N_i dA (2x2 Gauss; exact for a plane face). They sum to the face area. */
+void ContactQuadAreas(const double x[4][3], double a[4]);
+
 #endif

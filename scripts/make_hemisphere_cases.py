@@ -5,7 +5,8 @@ hemisphere_{frictionless,friction}[_analytic][_refined|_fine|_xfine].opts.
 The Coons cases build the tools as the method's paper did (scripts/coons_tools.py: punch from 3
 Coons patches and a plane, die fillet from 1 Coons patch); the _analytic cases use a sphere and a
 torus. Seed mesh: 301 hexahedra, one layer (the paper: 294); _refined: 3 layers, 12x the elements;
-_fine: 4 layers, 32x; _xfine: 4 layers, 68x."""
+_fine: 4 layers, 32x; _xfine: 4 layers, 68x. The refined meshes give the contact penalties per
+unit area (-contact_penalty_per_area), equal per unit area to the seed mesh's per-node values."""
 import os
 import subprocess
 import sys
@@ -49,9 +50,7 @@ COMMON = """-mesh_type blank
 -bc_symy_components y
 # contact: the bottom face on the punch, the top face on the die
 -contact_set bottom,top
--contact_penalty_normal 1e5
--contact_penalty_tangential 5e3
--contact_friction {mu}
+{penalty}-contact_friction {mu}
 -load_steps 40
 -load_dt_max 0.05
 -output_interval 4
@@ -75,15 +74,22 @@ ANALYTIC = """-tool_names punch,die
 -tool_die_patch0_minor 6.35
 -tool_die_patch0_range -10,100,180,270
 """
-# per mesh: on the extra-fine mesh the contact front crosses more node rows per 2 mm step, and a
-# step takes 8 to 13 Newton iterations; the increment grows again after steps of up to 10
+# contact penalty: the paper's per-node values on the seed mesh; on the refined meshes the same
+# stiffness per unit area, each node's penalties scaled by its tributary area (doc/contact.md):
+# 1e5 and 5e3 divided by the seed's mean tributary area, 5489.82 mm2 / 668 slave nodes
+SEED_AREA = 5489.821322 / 668
+PENALTY_NODE = "-contact_penalty_normal 1e5\n-contact_penalty_tangential 5e3\n"
+PENALTY_AREA = ("# penalties per unit area (N/mm3): the seed mesh's per-node values over its mean tributary area\n"
+                f"-contact_penalty_per_area\n-contact_penalty_normal {1e5 / SEED_AREA:.5g}\n-contact_penalty_tangential {5e3 / SEED_AREA:.4g}\n")
+# per mesh: on the extra-fine mesh a few steps take up to 19 Newton iterations; the increment
+# grows again after steps of up to 10
 EXTRA = {"_xfine": "# steps of up to 10 Newton iterations let the increment grow again after a cut\n-load_grow_its 10\n"}
 # Coons tools: the paper's construction with each punch patch split 3 x 3 (27 + 1 plane) and the
 # die fillet in 4 sectors, so that the tool surfaces lie within 0.02 mm of the sphere and torus;
 # the paper's own 3 + 1 and 1 patches (up to 0.52 mm off) are kept in hemisphere_*_coons3.opts
 coons = subprocess.run([sys.executable, os.path.join(here, "coons_tools.py"), "--split", "3", "--die-sectors", "4"], check=True, capture_output=True, text=True).stdout
 coons3 = subprocess.run([sys.executable, os.path.join(here, "coons_tools.py")], check=True, capture_output=True, text=True).stdout
-for fr, mu, what in (("frictionless", 0, "frictionless"), ("friction", 0.15, "Coulomb friction mu = 0.15, K_T = 5e3")):
+for fr, mu, what in (("frictionless", 0, "frictionless"), ("friction", 0.15, "Coulomb friction mu = 0.15")):
     for tl, tools, tdesc in (("", coons, "punch from 3 Coons patches (each split 3 x 3) + 1 plane, die fillet from 4 Coons patches"),
                              ("_coons3", coons3, "the paper's tools: punch from 3 Coons patches + 1 plane, die fillet from 1 Coons patch"),
                              ("_analytic", ANALYTIC, "analytic tools: sphere punch, torus die fillet")):
@@ -91,7 +97,7 @@ for fr, mu, what in (("frictionless", 0, "frictionless"), ("friction", 0.15, "Co
             if tl == "_coons3" and ms:
                 continue
             name = f"hemisphere_{fr}{tl}{ms}"
-            text = HEAD.format(what=what, mesh=mdesc, tools=tdesc) + COMMON.format(nc=nc, nr=nr, nl=nl, mu=mu, name=name) + EXTRA.get(ms, "") + tools
+            text = HEAD.format(what=what, mesh=mdesc, tools=tdesc) + COMMON.format(nc=nc, nr=nr, nl=nl, mu=mu, name=name, penalty=PENALTY_AREA if ms else PENALTY_NODE) + EXTRA.get(ms, "") + tools
             with open(os.path.join(cases, name + ".opts"), "w") as f:
                 f.write(text if text.endswith("\n") else text + "\n")
             print("wrote cases/" + name + ".opts")

@@ -242,8 +242,10 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
     cs->law.KN = 1e5;
     cs->law.KT = 5e3;
     cs->law.mu = 0;
-    PetscCall(PetscOptionsReal("-contact_penalty_normal", "Normal penalty K_N (force per length, per node)", NULL, cs->law.KN, &cs->law.KN, NULL));
-    PetscCall(PetscOptionsReal("-contact_penalty_tangential", "Tangential penalty K_T (force per length, per node)", NULL, cs->law.KT, &cs->law.KT, NULL));
+    PetscCall(PetscOptionsReal("-contact_penalty_normal", "Normal penalty K_N (force per length, per node; per unit area with -contact_penalty_per_area)", NULL, cs->law.KN, &cs->law.KN, NULL));
+    PetscCall(PetscOptionsReal("-contact_penalty_tangential", "Tangential penalty K_T (force per length, per node; per unit area with -contact_penalty_per_area)", NULL, cs->law.KT, &cs->law.KT, NULL));
+    cs->contact_per_area = PETSC_FALSE;
+    PetscCall(PetscOptionsBool("-contact_penalty_per_area", "K_N and K_T are per unit area (force per length^3); each slave node's are scaled by its tributary area on the contact faces", NULL, cs->contact_per_area, &cs->contact_per_area, NULL));
     PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient mu", NULL, cs->law.mu, &cs->law.mu, NULL));
     PetscCheck(cs->law.KN > 0 && PetscIsNormalReal(cs->law.KN), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal %g must be positive", (double)cs->law.KN);
     PetscCheck(cs->law.KT > 0 && PetscIsNormalReal(cs->law.KT), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_tangential %g must be positive", (double)cs->law.KT);

@@ -143,3 +143,22 @@ int ContactNodeEval(const ContactLaw *law, double g, const double n[3], const do
     }
   return status;
 }
+
+void ContactQuadAreas(const double x[4][3], double a[4])
+{
+  static const double xa[4] = {-1, 1, 1, -1}, ea[4] = {-1, -1, 1, 1};
+  const double        gq    = 0.57735026918962576451; /* 1/sqrt(3) */
+  for (int i = 0; i < 4; i++) a[i] = 0;
+  for (int q = 0; q < 4; q++) {
+    const double xi = xa[q] * gq, eta = ea[q] * gq;
+    double       dxi[3] = {0, 0, 0}, deta[3] = {0, 0, 0}, nrm[3];
+    for (int i = 0; i < 4; i++)
+      for (int k = 0; k < 3; k++) {
+        dxi[k] += 0.25 * xa[i] * (1 + ea[i] * eta) * x[i][k];
+        deta[k] += 0.25 * ea[i] * (1 + xa[i] * xi) * x[i][k];
+      }
+    cross(dxi, deta, nrm);
+    const double J = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+    for (int i = 0; i < 4; i++) a[i] += 0.25 * (1 + xa[i] * xi) * (1 + ea[i] * eta) * J; /* Gauss weights 1 */
+  }
+}

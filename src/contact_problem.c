@@ -108,6 +108,24 @@ PetscErrorCode ContactSetUp(Problem *pb)
     pb->pmemo[i].tool                      = -2;
   }
   PetscCall(PetscFree(mark));
+  if (cs->contact_per_area) {
+    PetscReal amin = PETSC_MAX_REAL, amax = 0, asum = 0;
+    PetscInt  nzero = 0;
+    PetscCall(PetscMalloc1(pb->ns, &pb->karea));
+    for (PetscInt i = 0; i < pb->ns; i++) {
+      pb->karea[i] = pb->varea[pb->slave[i]];
+      if (!(pb->karea[i] > 0)) nzero++;
+      amin = PetscMin(amin, pb->karea[i]);
+      amax = PetscMax(amax, pb->karea[i]);
+      asum += pb->karea[i];
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nzero, 1, MPIU_INT, MPI_SUM, pb->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &amin, 1, MPIU_REAL, MPI_MIN, pb->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &amax, 1, MPIU_REAL, MPI_MAX, pb->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &asum, 1, MPIU_REAL, MPI_SUM, pb->comm));
+    PetscCheck(!nzero, pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, cs->contact_set[0], cs->ncontact_set > 1 ? ", ..." : "");
+    PetscCall(PetscPrintf(pb->comm, "contact: penalties per unit area; tributary areas of the slave nodes: total %.10g, smallest %g, largest %g\n", (double)asum, (double)amin, (double)amax));
+  }
   {
     PetscInt n = pb->ns;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, pb->comm));
@@ -124,6 +142,7 @@ PetscErrorCode ContactDestroy(Problem *pb)
     PetscCall(PetscFree4(pb->slave, pb->sgdof, pb->seed, pb->has_seed));
     PetscCall(PetscFree(pb->active_prev));
     PetscCall(PetscFree(pb->pmemo));
+    PetscCall(PetscFree(pb->karea));
     PetscCall(PetscFree2(pb->cst_c, pb->cst_t));
   }
   PetscCall(ToolsDestroy(pb->ntools, &pb->tools));
@@ -178,6 +197,7 @@ static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda
   Projection          pr;
   double              sh[3], shc[3], ds[3], tTn[2] = {0, 0}, dn[9], *dnp = NULL;
   PetscInt            tool;
+  ContactLaw          law = pb->cs->law;
 
   memset(R, 0, 3 * sizeof(double));
   if (K) memset(K, 0, 9 * sizeof(double));
@@ -224,7 +244,11 @@ static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda
     }
     dnp = dn;
   }
-  st->status    = ContactNodeEval(&pb->cs->law, pr.gap, pr.n, dnp, pb->seed + 3 * i, tTn, ds, R, pb->cs->contact_fd ? NULL : K, st->t1, &st->tN, st->tT);
+  if (pb->karea) { /* penalties per unit area times the node's tributary area */
+    law.KN *= pb->karea[i];
+    law.KT *= pb->karea[i];
+  }
+  st->status    = ContactNodeEval(&law, pr.gap, pr.n, dnp, pb->seed + 3 * i, tTn, ds, R, pb->cs->contact_fd ? NULL : K, st->t1, &st->tN, st->tT);
   st->has_frame = PETSC_TRUE;
   for (int k = 0; k < 3; k++) {
     st->f[k]  = -R[k];

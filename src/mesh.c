@@ -358,6 +358,83 @@ static PetscErrorCode CreateSections(Problem *pb)
   PetscFunctionReturn(0);
 }
 
+/* Rank 0, with -contact_penalty_per_area: the tributary area of every source vertex on the faces
+   of the contact sets. A face counts when its four vertices all lie in one set and no other cell
+   has the same four vertices (a boundary face); each corner receives the integral of its shape
+   function over the face (ContactQuadAreas), in the reference configuration. */
+typedef struct {
+  PetscInt key[4], cell, face;
+} FaceRec;
+
+static int FaceRecCmp(const void *a, const void *b)
+{
+  const FaceRec *x = (const FaceRec *)a, *y = (const FaceRec *)b;
+  for (int i = 0; i < 4; i++)
+    if (x->key[i] != y->key[i]) return x->key[i] < y->key[i] ? -1 : 1;
+  return 0;
+}
+
+static PetscErrorCode SerialContactAreas(const Case *cs, const MeshData *md, char (*names)[ATRITO_NAME_LEN], const PetscInt *is_cell, PetscInt nnames, PetscReal *area)
+{
+  static const int hexface[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  PetscBool       *mark;
+  FaceRec         *fr;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(md->nv, &mark));
+  for (PetscInt s = 0; s < cs->ncontact_set; s++) {
+    PetscInt set = -1, nf = 0;
+    for (PetscInt i = 0; i < nnames && set < 0; i++) {
+      PetscBool eq;
+      PetscCall(PetscStrcmp(names[i], cs->contact_set[s], &eq));
+      if (eq) set = i;
+    }
+    if (set < 0) continue; /* reported by ContactSetUp */
+    PetscCall(PetscArrayzero(mark, md->nv));
+    if (!is_cell[set])
+      for (PetscInt k = 0; k < md->nsets[set].n; k++) mark[md->nsets[set].idx[k]] = PETSC_TRUE;
+    else
+      for (PetscInt k = 0; k < md->elsets[set - md->nnset].n; k++)
+        for (PetscInt a = 0; a < 8; a++) mark[md->conn[8 * md->elsets[set - md->nnset].idx[k] + a]] = PETSC_TRUE;
+    for (PetscInt e = 0; e < md->ne; e++)
+      for (int k = 0; k < 6; k++) {
+        PetscBool all = PETSC_TRUE;
+        for (int j = 0; j < 4; j++) all = all && mark[md->conn[8 * e + hexface[k][j]]];
+        nf += all ? 1 : 0;
+      }
+    PetscCall(PetscMalloc1(nf, &fr));
+    nf = 0;
+    for (PetscInt e = 0; e < md->ne; e++)
+      for (int k = 0; k < 6; k++) {
+        PetscBool all = PETSC_TRUE;
+        for (int j = 0; j < 4; j++) all = all && mark[md->conn[8 * e + hexface[k][j]]];
+        if (!all) continue;
+        for (int j = 0; j < 4; j++) fr[nf].key[j] = md->conn[8 * e + hexface[k][j]];
+        PetscCall(PetscSortInt(4, fr[nf].key));
+        fr[nf].cell = e;
+        fr[nf].face = k;
+        nf++;
+      }
+    qsort(fr, (size_t)nf, sizeof(FaceRec), FaceRecCmp);
+    for (PetscInt f = 0; f < nf;) {
+      PetscInt g = f + 1;
+      while (g < nf && !FaceRecCmp(&fr[f], &fr[g])) g++;
+      if (g == f + 1) { /* on the boundary */
+        const PetscInt *c = md->conn + 8 * fr[f].cell;
+        double          x[4][3], af[4];
+        for (int j = 0; j < 4; j++)
+          for (int d = 0; d < 3; d++) x[j][d] = md->X[3 * c[hexface[fr[f].face][j]] + d];
+        ContactQuadAreas(x, af);
+        for (int j = 0; j < 4; j++) area[c[hexface[fr[f].face][j]]] += af[j];
+      }
+      f = g;
+    }
+    PetscCall(PetscFree(fr));
+  }
+  PetscCall(PetscFree(mark));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ProblemCreateMesh(Problem *pb)
 {
   const Case    *cs = pb->cs;
@@ -432,28 +509,36 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
     }
   }
 
-  /* source ids as a field on the serial mesh, carried through distribution */
-  PetscSection idsec;
-  Vec          idvec;
+  /* source ids (and tributary areas) as a field on the serial mesh, carried through distribution */
+  PetscSection   idsec;
+  Vec            idvec;
+  const PetscInt nid = cs->contact_per_area ? 3 : 2;
   {
+    PetscReal   *area = NULL;
     PetscInt     pStart, pEnd, vStart, vEnd, n;
     PetscScalar *a;
     PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
     PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
     PetscCall(PetscSectionCreate(PETSC_COMM_SELF, &idsec));
     PetscCall(PetscSectionSetChart(idsec, pStart, pEnd));
-    for (PetscInt p = pStart; p < pEnd; p++) PetscCall(PetscSectionSetDof(idsec, p, 2)); /* id, source index */
+    for (PetscInt p = pStart; p < pEnd; p++) PetscCall(PetscSectionSetDof(idsec, p, nid)); /* id, source index[, area] */
     PetscCall(PetscSectionSetUp(idsec));
     PetscCall(PetscSectionGetStorageSize(idsec, &n));
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &idvec));
+    if (nid == 3 && pb->rank == 0) {
+      PetscCall(PetscCalloc1(md.nv, &area));
+      PetscCall(SerialContactAreas(cs, &md, names, is_cell, nnames, area));
+    }
     PetscCall(VecGetArray(idvec, &a));
     for (PetscInt p = pStart; p < pEnd; p++) {
       PetscInt off;
       PetscCall(PetscSectionGetOffset(idsec, p, &off));
       a[off]     = (p >= vStart && p < vEnd) ? (PetscScalar)md.node_id[p - vStart] : (PetscScalar)md.elem_id[p];
       a[off + 1] = (p >= vStart && p < vEnd) ? (PetscScalar)(p - vStart) : (PetscScalar)p;
+      if (nid == 3) a[off + 2] = (p >= vStart && p < vEnd) ? area[p - vStart] : 0;
     }
     PetscCall(VecRestoreArray(idvec, &a));
+    PetscCall(PetscFree(area));
   }
 
   /* partition and distribute */
@@ -507,6 +592,7 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
     pb->vstart = vStart;
     PetscCall(PetscMalloc5(8 * pb->nc, &pb->cv, 3 * pb->nv, &pb->X, pb->nv, &pb->node_id, pb->nc, &pb->elem_id, pb->nc, &pb->einfo));
     PetscCall(PetscMalloc2(pb->nv, &pb->node_src, pb->nc, &pb->elem_src));
+    if (nid == 3) PetscCall(PetscMalloc1(pb->nv, &pb->varea));
     PetscCall(PetscMemzero(pb->einfo, pb->nc * sizeof(ElementInfo)));
     for (PetscInt c = cStart; c < cEnd; c++) {
       const PetscInt *cone;
@@ -530,6 +616,7 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
       } else if (p >= vStart) {
         pb->node_id[p - vStart]  = (PetscInt)PetscRealPart(ida[off]);
         pb->node_src[p - vStart] = (PetscInt)PetscRealPart(ida[off + 1]);
+        if (pb->varea) pb->varea[p - vStart] = PetscRealPart(ida[off + 2]);
       }
     }
     PetscCall(VecRestoreArrayRead(idvec, &ida));
@@ -558,6 +645,7 @@ PetscErrorCode ProblemDestroyMesh(Problem *pb)
   for (PetscInt b = 0; b < pb->nbc; b++) PetscCall(PetscFree3(pb->bc[b].loff, pb->bc[b].val, pb->bc[b].own));
   PetscCall(PetscFree5(pb->cv, pb->X, pb->node_id, pb->elem_id, pb->einfo));
   PetscCall(PetscFree2(pb->node_src, pb->elem_src));
+  PetscCall(PetscFree(pb->varea));
   PetscCall(PetscFree(pb->vloff));
   PetscCall(PetscFree(pb->vowned));
   PetscCall(PetscFree3(pb->cgdof, pb->cperm, pb->cndof));

@@ -201,5 +201,49 @@ int main(void)
     TU_CHECK(worstorth < 1e-14, "frame recurrence: t1, t2, n orthonormal to %.1e", worstorth);
     TU_CHECK(worstopp > 1 - 1e-9, "friction force opposite to the tangential slip: smallest cos(-f, ds_T) = %.12f", worstopp);
   }
+  /* tributary areas of a face: a plane trapezoid against the closed form a_i = J0 + (J1 xi_i + J2 eta_i)/3
+     (J = J0 + J1 xi + J2 eta: here 1.5 - 0.5 eta, so 5/3 at the long side, 4/3 at the short), rotated
+     and moved in space; a warped face (a cylinder strip) sums to its area to the quadrature error */
+  {
+    const double q[4][3] = {{0, 0, 0}, {4, 0, 0}, {3, 2, 0}, {1, 2, 0}}, ex[4] = {5. / 3, 5. / 3, 4. / 3, 4. / 3};
+    const double c = cos(0.7), sn = sin(0.7);
+    double       x[4][3], a[4], err = 0, sum = 0;
+    for (int i = 0; i < 4; i++) { /* x = Rz(0.7) Rx(0.7) q + (1, -2, 3) */
+      const double y1 = q[i][1] * c - q[i][2] * sn, z1 = q[i][1] * sn + q[i][2] * c;
+      x[i][0] = q[i][0] * c - y1 * sn + 1;
+      x[i][1] = q[i][0] * sn + y1 * c - 2;
+      x[i][2] = z1 + 3;
+    }
+    ContactQuadAreas(x, a);
+    for (int i = 0; i < 4; i++) {
+      err = fmax(err, fabs(a[i] - ex[i]));
+      sum += a[i];
+    }
+    TU_CHECK(err < 1e-14 && fabs(sum - 6) < 1e-14, "face tributary areas: plane trapezoid in space, (%.15g, %.15g, %.15g, %.15g) against (5/3, 5/3, 4/3, 4/3)", a[0], a[1], a[2], a[3]);
+    /* a strip of the cylinder r = 2 spanning 0.1 rad and 0.5 in z: the bilinear face is the chord
+       plane, area 0.5 * 2 * 2 sin(0.05) */
+    const double R = 2, th = 0.1;
+    const double w[4][3] = {{R, 0, 0}, {R * cos(th), R * sin(th), 0}, {R * cos(th), R * sin(th), 0.5}, {R, 0, 0.5}};
+    ContactQuadAreas(w, a);
+    const double chord = 2 * R * sin(th / 2);
+    TU_CHECK(fabs(a[0] + a[1] + a[2] + a[3] - 0.5 * chord) < 1e-14 && fabs(a[0] - a[1]) < 1e-15 && fabs(a[0] - a[3]) < 1e-15, "face tributary areas: a rectangle gives a quarter of its area %.6g to each corner", 0.5 * chord);
+    /* a warped face (corners not coplanar): the sum against a 200 x 200 midpoint rule */
+    const double h[4][3] = {{0, 0, 0}, {1, 0, 0.3}, {1.2, 1, -0.2}, {0, 0.9, 0.1}};
+    double       fine = 0;
+    for (int p = 0; p < 200; p++)
+      for (int r = 0; r < 200; r++) {
+        const double xi = -1 + (p + 0.5) / 100, eta = -1 + (r + 0.5) / 100;
+        double       dxi[3], deta[3];
+        for (int k = 0; k < 3; k++) {
+          dxi[k]  = 0.25 * (-(1 - eta) * h[0][k] + (1 - eta) * h[1][k] + (1 + eta) * h[2][k] - (1 + eta) * h[3][k]);
+          deta[k] = 0.25 * (-(1 - xi) * h[0][k] - (1 + xi) * h[1][k] + (1 + xi) * h[2][k] + (1 - xi) * h[3][k]);
+        }
+        const double nx = dxi[1] * deta[2] - dxi[2] * deta[1], ny = dxi[2] * deta[0] - dxi[0] * deta[2], nz = dxi[0] * deta[1] - dxi[1] * deta[0];
+        fine += sqrt(nx * nx + ny * ny + nz * nz) * 1e-4;
+      }
+    ContactQuadAreas(h, a);
+    TU_CHECK(fabs(a[0] + a[1] + a[2] + a[3] - fine) < 2e-3 * fine, "face tributary areas: a warped face sums to its area %.6f (2x2 Gauss %.6f)", fine, a[0] + a[1] + a[2] + a[3]);
+  }
+
   TU_RETURN();
 }
