@@ -22,6 +22,16 @@ def cpu_busy_seconds():
     return busy / os.sysconf("SC_CLK_TCK")
 
 
+def cpu_steal_seconds():
+    """CPU seconds the hypervisor took from this virtual machine since boot (all cores), or None"""
+    try:
+        with open("/proc/stat") as f:
+            v = [int(x) for x in f.readline().split()[1:]]
+    except (OSError, ValueError):
+        return None
+    return v[7] / os.sysconf("SC_CLK_TCK") if len(v) > 7 else None
+
+
 def children_cpu():
     """CPU seconds of the finished child processes"""
     ru = resource.getrusage(resource.RUSAGE_CHILDREN)
