@@ -378,7 +378,7 @@ static PetscErrorCode SerialContactAreas(const Case *cs, const MeshData *md, cha
 {
   static const int hexface[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
   PetscBool       *mark;
-  FaceRec         *fr;
+  FaceRec         *fr = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(md->nv, &mark));
@@ -396,25 +396,23 @@ static PetscErrorCode SerialContactAreas(const Case *cs, const MeshData *md, cha
     else
       for (PetscInt k = 0; k < md->elsets[set - md->nnset].n; k++)
         for (PetscInt a = 0; a < 8; a++) mark[md->conn[8 * md->elsets[set - md->nnset].idx[k] + a]] = PETSC_TRUE;
-    for (PetscInt e = 0; e < md->ne; e++)
-      for (int k = 0; k < 6; k++) {
-        PetscBool all = PETSC_TRUE;
-        for (int j = 0; j < 4; j++) all = all && mark[md->conn[8 * e + hexface[k][j]]];
-        nf += all ? 1 : 0;
-      }
-    PetscCall(PetscMalloc1(nf, &fr));
-    nf = 0;
-    for (PetscInt e = 0; e < md->ne; e++)
-      for (int k = 0; k < 6; k++) {
-        PetscBool all = PETSC_TRUE;
-        for (int j = 0; j < 4; j++) all = all && mark[md->conn[8 * e + hexface[k][j]]];
-        if (!all) continue;
-        for (int j = 0; j < 4; j++) fr[nf].key[j] = md->conn[8 * e + hexface[k][j]];
-        PetscCall(PetscSortInt(4, fr[nf].key));
-        fr[nf].cell = e;
-        fr[nf].face = k;
-        nf++;
-      }
+    for (int pass = 0; pass < 2; pass++) { /* count the faces in the set, then list them */
+      if (pass) PetscCall(PetscMalloc1(nf, &fr));
+      nf = 0;
+      for (PetscInt e = 0; e < md->ne; e++)
+        for (int k = 0; k < 6; k++) {
+          PetscBool all = PETSC_TRUE;
+          for (int j = 0; j < 4; j++) all = all && mark[md->conn[8 * e + hexface[k][j]]];
+          if (!all) continue;
+          if (pass) {
+            for (int j = 0; j < 4; j++) fr[nf].key[j] = md->conn[8 * e + hexface[k][j]];
+            PetscCall(PetscSortInt(4, fr[nf].key));
+            fr[nf].cell = e;
+            fr[nf].face = k;
+          }
+          nf++;
+        }
+    }
     qsort(fr, (size_t)nf, sizeof(FaceRec), FaceRecCmp);
     for (PetscInt f = 0; f < nf;) {
       PetscInt g = f + 1;
