@@ -11,12 +11,20 @@ import tempfile
 import time
 
 
-def cpu_busy_seconds():
-    """busy CPU seconds of the whole machine since boot (all cores), or None"""
+def _proc_stat_cpu():
+    """the machine-wide CPU tick counters of /proc/stat (user, nice, system, idle, iowait, irq,
+    softirq, steal, ...), or None"""
     try:
         with open("/proc/stat") as f:
-            v = [int(x) for x in f.readline().split()[1:]]
+            return [int(x) for x in f.readline().split()[1:]]
     except (OSError, ValueError):
+        return None
+
+
+def cpu_busy_seconds():
+    """busy CPU seconds of the whole machine since boot (all cores), or None"""
+    v = _proc_stat_cpu()
+    if v is None:
         return None
     busy = v[0] + v[1] + v[2] + (v[5] if len(v) > 5 else 0) + (v[6] if len(v) > 6 else 0)
     return busy / os.sysconf("SC_CLK_TCK")
@@ -24,12 +32,8 @@ def cpu_busy_seconds():
 
 def cpu_steal_seconds():
     """CPU seconds the hypervisor took from this virtual machine since boot (all cores), or None"""
-    try:
-        with open("/proc/stat") as f:
-            v = [int(x) for x in f.readline().split()[1:]]
-    except (OSError, ValueError):
-        return None
-    return v[7] / os.sysconf("SC_CLK_TCK") if len(v) > 7 else None
+    v = _proc_stat_cpu()
+    return v[7] / os.sysconf("SC_CLK_TCK") if v is not None and len(v) > 7 else None
 
 
 def children_cpu():

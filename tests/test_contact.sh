@@ -58,11 +58,13 @@ for side in bottom:-1.216741,-1.216741,1.542544,1.216741,-1.216741 top:-1.216741
   left:-1.216741,-1.216741,1.542544,-1.216741,1.216741 right:1.216741,-1.216741,1.542544,1.216741,1.216741; do
   C="$C -tool_ball_patch0_${side%%:*}_type arc -tool_ball_patch0_${side%%:*}_points ${side#*:},1.542544,0,0,4"
 done
-for tool in plane sphere coons; do
+#    (sphere_area: the sphere with the penalties per unit area, the same per interior node)
+for tool in plane sphere coons sphere_area; do
   for tan in analytic fd; do
     name=jac_${tool}_$tan
     if [ $tool = plane ]; then opts="-options_file cases/block_plane_drag.opts -output_interval 0 -box_cells 2,2,1"
     elif [ $tool = sphere ]; then opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1"
+    elif [ $tool = sphere_area ]; then opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 -contact_penalty_per_area -contact_penalty_normal 4e4 -contact_penalty_tangential 4e3"
     else opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 $C"; fi
     # shellcheck disable=SC2086
     atrito 1 $name $opts -contact_tangent $tan -snes_test_jacobian &&
