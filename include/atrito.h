@@ -166,7 +166,6 @@ typedef struct {
   PetscReal     search;        /* pairing distance                                           */
   PetscBool    *active_prev;   /* ns: in contact at the start of the current Newton iteration */
   PairMemo     *pmemo;         /* ns: the last pairing of each node                          */
-  PetscReal    *karea;         /* ns: tributary area scaling the penalties (NULL: per node)  */
   PetscBool     fault_done;
 
   PetscLogEvent ev_residual, ev_jacobian, ev_contact, ev_pairing, ev_output;

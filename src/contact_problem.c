@@ -108,16 +108,15 @@ PetscErrorCode ContactSetUp(Problem *pb)
     pb->pmemo[i].tool                      = -2;
   }
   PetscCall(PetscFree(mark));
-  if (cs->contact_per_area) {
+  if (cs->contact_per_area) { /* the tributary areas come with the mesh (pb->varea) */
     PetscReal amin = PETSC_MAX_REAL, amax = 0, asum = 0;
     PetscInt  nzero = 0;
-    PetscCall(PetscMalloc1(pb->ns, &pb->karea));
     for (PetscInt i = 0; i < pb->ns; i++) {
-      pb->karea[i] = pb->varea[pb->slave[i]];
-      if (!(pb->karea[i] > 0)) nzero++;
-      amin = PetscMin(amin, pb->karea[i]);
-      amax = PetscMax(amax, pb->karea[i]);
-      asum += pb->karea[i];
+      const PetscReal A = pb->varea[pb->slave[i]];
+      if (!(A > 0)) nzero++;
+      amin = PetscMin(amin, A);
+      amax = PetscMax(amax, A);
+      asum += A;
     }
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nzero, 1, MPIU_INT, MPI_SUM, pb->comm));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &amin, 1, MPIU_REAL, MPI_MIN, pb->comm));
@@ -142,7 +141,6 @@ PetscErrorCode ContactDestroy(Problem *pb)
     PetscCall(PetscFree4(pb->slave, pb->sgdof, pb->seed, pb->has_seed));
     PetscCall(PetscFree(pb->active_prev));
     PetscCall(PetscFree(pb->pmemo));
-    PetscCall(PetscFree(pb->karea));
     PetscCall(PetscFree2(pb->cst_c, pb->cst_t));
   }
   PetscCall(ToolsDestroy(pb->ntools, &pb->tools));
@@ -244,9 +242,9 @@ static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda
     }
     dnp = dn;
   }
-  if (pb->karea) { /* penalties per unit area times the node's tributary area */
-    law.KN *= pb->karea[i];
-    law.KT *= pb->karea[i];
+  if (pb->varea) { /* penalties per unit area times the node's tributary area */
+    law.KN *= pb->varea[pb->slave[i]];
+    law.KT *= pb->varea[pb->slave[i]];
   }
   st->status    = ContactNodeEval(&law, pr.gap, pr.n, dnp, pb->seed + 3 * i, tTn, ds, R, pb->cs->contact_fd ? NULL : K, st->t1, &st->tN, st->tT);
   st->has_frame = PETSC_TRUE;
