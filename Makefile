@@ -10,7 +10,7 @@ PETSC_LIBS   := $(shell pkg-config --libs PETSc 2>/dev/null)
 HDF5_DIR := /usr/lib/x86_64-linux-gnu/hdf5/openmpi
 CPPFLAGS := -Iinclude $(PETSC_CFLAGS) -I/usr/include/hdf5/openmpi
 CFLAGS   ?= -O3 -march=native -flto=auto -g -std=c11 -Wall -Wextra -Wno-unused-parameter -fno-math-errno
-LDLIBS   := $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -lmetis -lm
+LDLIBS   := $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -ldmumps -lmumps_common -lmetis -lm
 PYTHON   := $(shell /usr/bin/python3 -c "import h5py, matplotlib" >/dev/null 2>&1 && echo /usr/bin/python3 || echo python3)
 
 LIB_SRC  := $(filter-out src/main.c,$(wildcard src/*.c))

@@ -17,6 +17,7 @@
 /* ---------------------------------------------------------------- case (read-only) */
 typedef enum { MESH_BOX = 0, MESH_BLANK, MESH_GMSH, MESH_INP } MeshSource;
 typedef enum { PREDICTOR_NONE = 0, PREDICTOR_EXTRAPOLATE, PREDICTOR_TANGENT, PREDICTOR_AUTO } Predictor;
+typedef enum { LU_ORDERING_MUMPS = 0, LU_ORDERING_ND } LUOrdering;
 
 typedef struct {
   char      name[ATRITO_NAME_LEN];  /* as listed in -bc_names                          */
@@ -49,6 +50,7 @@ typedef struct {
   Predictor load_predictor;
   PetscInt  stall_its;    /* Newton has stalled when |R| did not fall below stall_factor times */
   PetscReal stall_factor; /* its value stall_its iterations earlier (0: no test)              */
+  LUOrdering lu_ordering; /* LU by MUMPS: METIS nested dissection (direct calls) or MUMPS's own */
   /* contact */
   char       contact_set[8][ATRITO_NAME_LEN]; /* slave nodes: the union of these sets       */
   PetscInt   ncontact_set;

@@ -4,6 +4,7 @@ set -euo pipefail
 need=()
 pkg-config --exists PETSc 2>/dev/null || need+=(petsc-dev)
 [ -f /usr/include/metis.h ] || need+=(libmetis-dev)
+[ -f /usr/include/dmumps_c.h ] || need+=(libmumps-dev)
 [ -f /usr/include/hdf5/openmpi/hdf5.h ] || need+=(libhdf5-openmpi-dev)
 command -v mpiexec >/dev/null 2>&1 || need+=(openmpi-bin)
 command -v mpicc >/dev/null 2>&1 || need+=(libopenmpi-dev)

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 #include "atrito.h"
+#include "lu.h"
 
 static PetscErrorCode CheckFinite(MPI_Comm comm, const char *opt, const PetscReal *v, PetscInt n)
 {
@@ -67,6 +68,7 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
   cs->stall_factor       = 0.9;
   cs->load_max_steps     = 100000;
   cs->load_predictor     = PREDICTOR_AUTO;
+  cs->lu_ordering        = LU_ORDERING_ND;
   cs->output_interval    = 1;
   PetscCall(PetscStrncpy(cs->output_dir, "out", sizeof(cs->output_dir)));
 
@@ -212,6 +214,13 @@ PetscErrorCode CaseRead(MPI_Comm comm, Case *cs)
       PetscInt    p       = (PetscInt)cs->load_predictor;
       PetscCall(PetscOptionsEList("-load_predictor", "Start of each step: the committed state, the extrapolation of the last two, the tangent response to the load increment, or auto (extrapolation when there is a previous step, else tangent)", NULL, preds, 4, preds[p], &p, NULL));
       cs->load_predictor = (Predictor)p;
+    }
+    {
+      const char *ords[] = {"mumps", "nd", "LUOrdering", "LU_ORDERING_", NULL};
+      PetscInt    o      = (PetscInt)cs->lu_ordering;
+      PetscCall(PetscOptionsEList("-lu_ordering", "Ordering of the LU factorisation (-pc_type lu with MUMPS): nd = METIS nested dissection of the Jacobian's graph, MUMPS called directly; mumps = MUMPS's own ordering (PORD here) through PETSc's interface", NULL, ords, 2, ords[o], &o, NULL));
+      cs->lu_ordering = (LUOrdering)o;
+      if (cs->lu_ordering == LU_ORDERING_ND) PetscCall(LUNDCheckOptions(comm, NULL));
     }
     PetscCheck(cs->load_dt_max > 0 && cs->load_dt_max <= 1, comm, PETSC_ERR_USER_INPUT, "-load_dt_max %g must lie in (0, 1]", (double)cs->load_dt_max);
     PetscCheck(cs->load_dt_min > 0 && cs->load_dt_min <= cs->load_dt0, comm, PETSC_ERR_USER_INPUT, "-load_dt_min %g must lie in (0, first increment %g]", (double)cs->load_dt_min, (double)cs->load_dt0);

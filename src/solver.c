@@ -9,6 +9,7 @@
 #include "tensor.h"
 #include "output.h"
 #include "iorows.h"
+#include "lu.h"
 
 static void BoundaryValues(const Problem *pb, PetscScalar *u, PetscReal lambda)
 {
@@ -650,6 +651,18 @@ PetscErrorCode ProblemSolve(Problem *pb)
   PetscCall(SNESSetUpdate(snes, NewtonUpdate));
   PetscCall(SNESSetConvergenceTest(snes, NewtonConverged, pb, NULL));
   PetscCall(SNESSetFromOptions(snes));
+  if (cs->lu_ordering == LU_ORDERING_ND) {
+    /* LU by MUMPS, unless the options chose another preconditioner or package: MUMPS called
+       directly with a METIS nested-dissection ordering (fewer flops than PORD, and balanced
+       subtrees for the ranks; doc/design.md) */
+    PetscBool     islu;
+    MatSolverType st;
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &islu));
+    if (islu) {
+      PetscCall(PCFactorGetMatSolverType(pc, &st));
+      if (st && !strcmp(st, MATSOLVERMUMPS)) PetscCall(PCSetLUND(pc));
+    }
+  }
 
   /* the initial state */
   if (!cs->restart[0]) {
@@ -671,8 +684,10 @@ PetscErrorCode ProblemSolve(Problem *pb)
       lam_t = (1.0 - lam_c - dl < 1e-12) ? 1.0 : lam_c + dl; /* the last step ends exactly at 1 */
       pb->lambda = lam_t;
       PetscCall(VecCopy(pb->Uc, pb->U));
-      /* a fresh factorisation (analysis and scaling) for every step, so that a step depends only
-         on the committed state: a run restarted from a checkpoint repeats the same iterations */
+      /* a fresh factorisation for every step, so that a step depends only on the committed state:
+         a run restarted from a checkpoint repeats the same iterations (PETSc's MUMPS interface:
+         analysis and scaling again; -lu_ordering nd keeps its analysis, a function of the
+         nonzero pattern alone) */
       PetscCall(PCReset(pc));
       /* frame seeds from the committed state (a retry starts again from the committed frames) */
       PetscCall(LocalWithBC(pb, pb->Uc, lam_c));

@@ -65,6 +65,14 @@ atrito 2 beam2 -options_file cases/clamped_beam.opts -output_interval 0
 atrito 2 beam2s -options_file cases/clamped_beam.opts -output_interval 0 -partition simple
 $PY tests/compare_history.py "$OUT/beam1/history.csv" "$OUT/beam2/history.csv" 8 "clamped beam: np=1 and np=2 (METIS)"
 $PY tests/compare_history.py "$OUT/beam1/history.csv" "$OUT/beam2s/history.csv" 8 "clamped beam: np=1 and np=2 (simple partition)"
+# the two LU paths: MUMPS with the METIS nested-dissection ordering (default) and MUMPS's own
+# ordering through PETSc's interface; the default analyses the pattern once per run
+atrito 2 beam2m -options_file cases/clamped_beam.opts -output_interval 0 -lu_ordering mumps
+$PY tests/compare_history.py "$OUT/beam2/history.csv" "$OUT/beam2m/history.csv" 10 "clamped beam (np=2): -lu_ordering nd and -lu_ordering mumps"
+atrito 2 beam2v -options_file cases/clamped_beam.opts -output_interval 0 -load_steps 4 -ksp_view
+v=$(grep -c "LU by MUMPS, METIS nested-dissection ordering" "$OUT/beam2v.log"); a=$(grep -o "unknowns; [0-9]* analyses" "$OUT/beam2v.log" | sort -u | tr '\n' ' ')
+s=$(grep -o "^step *[0-9]*" "$OUT/beam2v.log" | wc -l)
+[ "$v" -ge 1 ] && [ "$a" = "unknowns; 1 analyses " ] && [ "$s" -ge 4 ] && echo "ok - -ksp_view (np=2): LU with the METIS ordering, one analysis for all $s steps ($v solves)" || echo "not ok - -ksp_view: '$v' views, analyses '$a', $s steps"
 atrito 1 blank1 -options_file cases/blank_point.opts -output_interval 3
 atrito 2 blank2 -options_file cases/blank_point.opts -output_interval 3
 $PY tests/compare_history.py "$OUT/blank1/history.csv" "$OUT/blank2/history.csv" 8 "quarter blank (O-grid): np=1 and np=2 (METIS)"
