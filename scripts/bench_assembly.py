@@ -273,7 +273,7 @@ EVENT_RE = re.compile(r"^(AtritoResidual|AtritoJacobian)\s+(\d+)\s+([\d.]+)\s+([
 MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
 MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)\s+min\s+([\d.eE+-]+)")
 STEP_RE = re.compile(r"^step\s+(\d+)\s+time\s+([\d.]+)\s+its\s+(\d+)", re.M)
-LUF_RE = re.compile(r"^MatLUFactorNum\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)", re.M)
+LUF_RE = re.compile(r"^(?:AtritoLUFactor|MatLUFactorNum)\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)", re.M)
 PETSC_RE = re.compile(r"Petsc Release Version ([\d.]+)")
 CPR_RE = re.compile(r"cells per rank:\s*([\d ]+)")
 
@@ -673,7 +673,7 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
               for recs in list(results.values()) + list(par.values())]
     lus = [r["lu_time"] / r["wall"] for recs in list(results.values()) + list(par.values()) for r in recs if r["lu_time"]]
     A(f"- The residual assembly runs at {span(ratios, '{:.1f}')}× the Jacobian's throughput. Over the whole run, the "
-      f"LU factorisation (MUMPS, `MatLUFactorNum`) takes {span([100 * x for x in lus])} % of the wall time "
+      f"LU factorisation (MUMPS, `AtritoLUFactor` or `MatLUFactorNum`) takes {span([100 * x for x in lus])} % of the wall time "
       "(last column of the first table).")
     ndist = sum(1 for r in allrecs if disturbed(r))
     notes = set(notes)

@@ -22,7 +22,8 @@ and the loading are those of the case.
 
 Every run adds -log_view -output_interval 0 (no field output). Parsed per run: the maximum over
 ranks of the times of the events AtritoResidual, AtritoJacobian, AtritoContact, SNESSolve,
-KSPSolve, MatLUFactorNum (and their max/min ratio over ranks), the total ("Time (sec):", max over
+KSPSolve, and the LU factorisations AtritoLUFactor or MatLUFactorNum, shown as LUFactor (and
+their max/min ratio over ranks), the total ("Time (sec):", max over
 ranks), the steps, Newton iterations and cuts of the final "done:" line. Each configuration is run
 --repeat times (the repetitions interleaved, so a disturbance does not hit one configuration
 only); the tables give medians. Speedup S(p) = T(p0)/T(p), efficiency E(p) = S(p) p0/p for strong
@@ -57,7 +58,10 @@ from benchutil import children_cpu, cpu_busy_seconds
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HEADING = "## Parallel scaling"
-EVENTS = ["SNESSolve", "AtritoResidual", "AtritoJacobian", "AtritoContact", "KSPSolve", "MatLUFactorNum"]
+EVENTS = ["SNESSolve", "AtritoResidual", "AtritoJacobian", "AtritoContact", "KSPSolve", "LUFactor"]
+# the LU factorisations: AtritoLUFactor (-lu_ordering nd, the default) or MatLUFactorNum (-lu_ordering mumps)
+EVENT_NAMES = {e: [e] for e in EVENTS}
+EVENT_NAMES["LUFactor"] = ["AtritoLUFactor", "MatLUFactorNum"]
 STRONG_CASE = "cases/hemisphere_friction_analytic_refined.opts"
 STRONG_ARGS = "-tool_punch_motion 0,0,10 -load_steps 10 -load_dt_max 0.1"
 WEAK_CASE = "cases/clamped_beam.opts"
@@ -85,7 +89,7 @@ def event_re(name):
     return re.compile(r"^" + re.escape(name) + r"\s+(\d+)\s+([\d.]+)\s+([\d.eE+-]+)\s+([\d.]+)", re.M)
 
 
-EVENT_RES = {e: event_re(e) for e in EVENTS}
+EVENT_RES = {e: [event_re(n) for n in EVENT_NAMES[e]] for e in EVENTS}
 
 
 def sh(cmd):
@@ -125,8 +129,8 @@ def weak_cells(base, p):
 
 def parse(out):
     rec = dict(events={}, total=None, done=None, error=None, cells=None, per_rank=None, petsc=None)
-    for e, rx in EVENT_RES.items():
-        m = rx.search(out)
+    for e, rxs in EVENT_RES.items():
+        m = next((m for rx in rxs if (m := rx.search(out))), None)
         if m:
             rec["events"][e] = dict(count=int(m.group(1)), tmax=float(m.group(3)), ratio=float(m.group(4)))
     m = TOTAL_RE.search(out)
@@ -369,8 +373,8 @@ def report(a, mi, strong, weak, recs, t_total, load0, load1, petsc, bin_mtime, c
     A("- Every run: `-log_view -output_interval 0` (no field output). Times are PETSc's event times, the maximum over "
       "the ranks; \"total\" is the `Time (sec):` line (the whole run: mesh, setup, all load steps). `AtritoResidual` "
       "and `AtritoJacobian` are the assemblies (element kernels with the return maps, insertion, final assembly); "
-      "`AtritoContact` is the contact part, nested inside them (zero for the beam); `MatLUFactorNum` the MUMPS "
-      "numerical factorisations; `KSPSolve` the solves proper (the factorisation is logged apart, under `PCSetUp`); "
+      "`AtritoContact` is the contact part, nested inside them (zero for the beam); `LUFactor` the MUMPS "
+      "numerical factorisations (`AtritoLUFactor`, or `MatLUFactorNum` with `-lu_ordering mumps`); `KSPSolve` the solves proper (the factorisation is logged apart, under `PCSetUp`); "
       "`SNESSolve` all Newton iterations (assembly, factorisation, solves, line search, contact).")
     if "yield_when_idle" in a.launcher:
         A("- `--mca mpi_yield_when_idle 1`: ranks waiting for a message yield the core instead of busy-polling. With "
@@ -485,7 +489,7 @@ def observations(strong, weak, ncores):
                 obs.append("Per event (efficiency, share of the 1-rank total): " + ", ".join(
                     f"{ev} {e:.0%} ({sh:.0%})" for ev, e, sh in parts) + ".")
                 asm = [x for x in parts if x[0] in ("AtritoResidual", "AtritoJacobian")]
-                lu = [x for x in parts if x[0] == "MatLUFactorNum"]
+                lu = [x for x in parts if x[0] == "LUFactor"]
                 if asm and lu:
                     obs.append("The assembly (element loops, no communication but the ghost exchange) scales better than the "
                                "MUMPS factorisation, whose share of the run therefore grows with the ranks."
@@ -507,7 +511,7 @@ def observations(strong, weak, ncores):
                        f"total time" + (f", {ei:.0%} per Newton iteration" if ei else "") + f" (Newton iterations {ints(g0['its'])} vs {ints(g1['its'])})"
                        + (f"; from the undisturbed runs only: {qspeed('weak', g0, p0, g1, p1, 'total')}." if qspeed('weak', g0, p0, g1, p1, 'total') != "–"
                           else "; no undisturbed runs at one of the rank counts."))
-            l0, l1 = g0["events"].get("MatLUFactorNum"), g1["events"].get("MatLUFactorNum")
+            l0, l1 = g0["events"].get("LUFactor"), g1["events"].get("LUFactor")
             j0, j1 = g0["events"].get("AtritoJacobian"), g1["events"].get("AtritoJacobian")
             if l0 and l1 and j0 and j1:
                 obs.append(f"Weak efficiency of the Jacobian assembly {j0 / j1:.0%}, of the LU factorisation {l0 / l1:.0%}: "

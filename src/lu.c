@@ -157,22 +157,23 @@ static PetscErrorCode Analyse(PC pc, LUND *lu, Mat A)
         if (ja[q] != i) { col[k++] = rstart + ja[q]; len[i]++; }
       for (PetscInt q = Ao ? ib[i] : 0; Ao && q < ib[i + 1]; q++) { col[k++] = garray[jb[q]]; len[i]++; }
     }
+    {
+      PetscInt64 kl = k, tot;
+      PetscCallMPI(MPI_Allreduce(&kl, &tot, 1, MPIU_INT64, MPI_SUM, comm));
+      PetscCheck(2 * tot < PETSC_MPI_INT_MAX, comm, PETSC_ERR_SUP, "Jacobian graph too large to order on one rank (%lld entries): use -lu_ordering mumps", (long long)tot);
+    }
     PetscCall(PetscMPIIntCast(m, &nl));
     PetscCall(PetscMPIIntCast(k, &ne));
     if (rank == 0) PetscCall(PetscMalloc4(size, &cnt, size + 1, &dsp, size, &rcnt, size + 1, &rdsp));
     PetscCallMPI(MPI_Gather(&nl, 1, MPI_INT, cnt, 1, MPI_INT, 0, comm));
     PetscCallMPI(MPI_Gather(&ne, 1, MPI_INT, rcnt, 1, MPI_INT, 0, comm));
     if (rank == 0) {
-      PetscInt tot = 0;
       dsp[0] = rdsp[0] = 0;
       for (PetscMPIInt r = 0; r < size; r++) {
-        dsp[r + 1] = dsp[r] + cnt[r];
-        tot += rcnt[r];
-        PetscCheck(tot < PETSC_MPI_INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "Jacobian graph too large to gather (%" PetscInt_FMT " entries)", tot);
+        dsp[r + 1]  = dsp[r] + cnt[r];
         rdsp[r + 1] = rdsp[r] + rcnt[r];
       }
-      PetscCheck(dsp[size] == N, PETSC_COMM_SELF, PETSC_ERR_PLIB, "gathered %d rows of %" PetscInt_FMT, dsp[size], N);
-      PetscCall(PetscMalloc2(N, &alen, PetscMax(tot, 1), &acol));
+      PetscCall(PetscMalloc2(N, &alen, PetscMax(rdsp[size], 1), &acol));
     }
     PetscCallMPI(MPI_Gatherv(len, nl, MPIU_INT, alen, cnt, dsp, MPIU_INT, 0, comm));
     PetscCallMPI(MPI_Gatherv(col, ne, MPIU_INT, acol, rcnt, rdsp, MPIU_INT, 0, comm));
