@@ -22,7 +22,7 @@ typedef struct {
   PetscBool        analysed;  /* for the pattern of state nzstate                     */
   PetscBool        factored;  /* the last factorisation succeeded                     */
   PetscObjectState nzstate;
-  Mat              A;         /* the operator analysed (not referenced)               */
+  PetscObjectId    Aid;       /* the operator analysed (its id: unique, never reused) */
   PetscInt         N;
   MUMPS_INT8       nnz;       /* local triplets                                       */
   MUMPS_INT       *irn, *jcn, *perm;
@@ -244,7 +244,7 @@ static PetscErrorCode Analyse(PC pc, LUND *lu, Mat A)
     PetscCall(VecDestroy(&b));
   }
   PetscCall(MatGetNonzeroState(A, &lu->nzstate));
-  lu->A        = A;
+  PetscCall(PetscObjectGetId((PetscObject)A, &lu->Aid));
   lu->analysed = PETSC_TRUE;
   lu->nanalysis++;
   PetscFunctionReturn(0);
@@ -255,13 +255,15 @@ static PetscErrorCode PCSetUp_LUND(PC pc)
   LUND            *lu;
   Mat              A;
   PetscObjectState nz;
+  PetscBool        same;
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &lu));
   PetscCall(PCSetFailedReason(pc, PC_NOERROR));
   PetscCall(PCGetOperators(pc, NULL, &A));
   PetscCall(MatGetNonzeroState(A, &nz));
-  if (!lu->analysed || lu->A != A || nz != lu->nzstate) {
+  PetscCall(PetscObjectCompareId((PetscObject)A, lu->Aid, &same));
+  if (!lu->analysed || !same || nz != lu->nzstate) {
     PetscCall(PetscLogEventBegin(lu->ev_analysis, pc, 0, 0, 0));
     PetscCall(Analyse(pc, lu, A));
     PetscCall(PetscLogEventEnd(lu->ev_analysis, pc, 0, 0, 0));
