@@ -10,9 +10,9 @@
    MUMPS analysis whenever the nonzero pattern changes (in practice once per run), a numerical
    factorisation whenever the values change. MUMPS control values are read from the options
    -mat_mumps_icntl_<i> and -mat_mumps_cntl_<i> under pc's prefix, as PETSc's interface does;
-   those that fix the ordering and the data layout (ICNTL 7, 18, 20, 21, 28, 29) are refused. */
+   those that fix the ordering and the data layout (ICNTL 6, 7, 18, 20, 21, 28, 29) are refused. */
 PetscErrorCode PCSetLUND(PC pc);
-/* Refuses the MUMPS controls that PCSetLUND sets itself (-mat_mumps_icntl_ 7, 18, 20, 21, 28, 29) */
+/* Refuses the MUMPS controls that PCSetLUND sets itself (-mat_mumps_icntl_ 6, 7, 18, 20, 21, 28, 29) */
 PetscErrorCode LUNDCheckOptions(MPI_Comm comm, const char prefix[]);
 /* How many analyses (ordering + MUMPS analysis) and successful factorisations pc has done */
 PetscErrorCode PCLUNDGetCounts(PC pc, PetscInt *nanalysis, PetscInt *nfactor);

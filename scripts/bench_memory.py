@@ -32,7 +32,7 @@ CASE = "cases/hemisphere_friction.opts"
 HEADING = "## Memory"
 # (core cells, radial cells, layers): hexahedra = 4 (nc^2 + 2 nc nr)
 MESHES = [(33, 80, 4), (46, 114, 4), (65, 161, 4)]
-SOLVERS = [("LU (MUMPS)", []), ("GMRES + GAMG", ["-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-8", "-ksp_max_it", "1000"])]
+SOLVERS = [("LU (MUMPS, METIS order)", []), ("GMRES + GAMG", ["-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-8", "-ksp_max_it", "1000"])]
 RUN_ARGS = ["-tool_punch_motion", "0,0,1", "-load_steps", "1", "-load_dt_max", "1", "-output_interval", "0", "-log_view", "-memory_view"]
 
 MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)")

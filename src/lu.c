@@ -1,7 +1,7 @@
 /* Direct solver: MUMPS with a METIS nested-dissection ordering (include/lu.h).
 
    Data flow: each rank hands MUMPS its own rows as coordinate triplets (ICNTL(18) = 3, distributed
-   input), in the order of the AIJ storage (the diagonal block, then the off-diagonal block), so that
+   input; on one rank centralised, ICNTL(18) = 0), in the order of the AIJ storage (the diagonal block, then the off-diagonal block), so that
    a new factorisation only copies the value arrays. The ordering is computed on rank 0 (the MUMPS
    host, which does the sequential analysis anyway) from the gathered graph of the matrix, made
    symmetric, by METIS_NodeND, and passed as PERM_IN (ICNTL(7) = 1). Right-hand side and solution
@@ -26,7 +26,8 @@ typedef struct {
   PetscInt         N;
   MUMPS_INT8       nnz;       /* local triplets                                       */
   MUMPS_INT       *irn, *jcn, *perm;
-  PetscScalar     *a;
+  PetscScalar     *a;         /* the values MUMPS reads: the matrix's own array on one rank, */
+  PetscScalar     *abuf;      /* else this copy of the diagonal and off-diagonal blocks'     */
   Vec              bseq;      /* whole vector on rank 0, empty elsewhere              */
   VecScatter       toz;
   PetscInt         nanalysis, nfactor, nretry;
@@ -89,15 +90,17 @@ static PetscErrorCode CopyValues(LUND *lu, Mat A)
     PetscCall(MatGetInfo(Ad, MAT_LOCAL, &info));
     nd = (PetscInt)info.nz_used;
   }
-  PetscCall(PetscArraycpy(lu->a, v, nd));
+  if (!Ao) lu->a = (PetscScalar *)v; /* valid until the matrix is reallocated, which changes its nonzero state */
+  else PetscCall(PetscArraycpy(lu->abuf, v, nd));
   PetscCall(MatSeqAIJRestoreArrayRead(Ad, &v));
   if (Ao) {
     MatInfo info;
     PetscCall(MatGetInfo(Ao, MAT_LOCAL, &info));
     no = (PetscInt)info.nz_used;
     PetscCall(MatSeqAIJGetArrayRead(Ao, &v));
-    PetscCall(PetscArraycpy(lu->a + nd, v, no));
+    PetscCall(PetscArraycpy(lu->abuf + nd, v, no));
     PetscCall(MatSeqAIJRestoreArrayRead(Ao, &v));
+    lu->a = lu->abuf;
   }
   PetscCheck((MUMPS_INT8)(nd + no) == lu->nnz, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Jacobian storage changed without a change of its nonzero state (%" PetscInt_FMT " entries, %lld analysed)", nd + no, (long long)lu->nnz);
   PetscFunctionReturn(0);
@@ -127,10 +130,12 @@ static PetscErrorCode Analyse(PC pc, LUND *lu, Mat A)
     PetscCall(MatGetRowIJ(Ao, 0, PETSC_FALSE, PETSC_FALSE, &n, &ib, &jb, &done));
     PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "no row structure of the off-diagonal block");
   }
-  PetscCall(PetscFree3(lu->irn, lu->jcn, lu->a));
+  PetscCall(PetscFree2(lu->irn, lu->jcn));
+  PetscCall(PetscFree(lu->abuf));
   lu->N   = N;
   lu->nnz = (MUMPS_INT8)ia[m] + (Ao ? (MUMPS_INT8)ib[m] : 0);
-  PetscCall(PetscMalloc3(lu->nnz, &lu->irn, lu->nnz, &lu->jcn, lu->nnz, &lu->a));
+  PetscCall(PetscMalloc2(lu->nnz, &lu->irn, lu->nnz, &lu->jcn));
+  if (Ao) PetscCall(PetscMalloc1(lu->nnz, &lu->abuf));
   {
     MUMPS_INT8 k = 0;
     for (PetscInt i = 0; i < m; i++)
@@ -226,11 +231,21 @@ static PetscErrorCode Analyse(PC pc, LUND *lu, Mat A)
   PetscCall(MatRestoreRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &m, &ia, &ja, &done));
   if (Ao) PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, PETSC_FALSE, &n, &ib, &jb, &done));
 
+  /* the values too, for the controls that analyse with them (e.g. -mat_mumps_icntl_8 -2) */
+  PetscCall(CopyValues(lu, A));
   lu->id.job     = 1;
   lu->id.n       = (MUMPS_INT)N;
-  lu->id.nnz_loc = lu->nnz;
-  lu->id.irn_loc = lu->irn;
-  lu->id.jcn_loc = lu->jcn;
+  if (lu->id.ICNTL(18) == 0) { /* one rank: centralised input */
+    lu->id.nnz = lu->nnz;
+    lu->id.irn = lu->irn;
+    lu->id.jcn = lu->jcn;
+    lu->id.a   = lu->a;
+  } else {
+    lu->id.nnz_loc = lu->nnz;
+    lu->id.irn_loc = lu->irn;
+    lu->id.jcn_loc = lu->jcn;
+    lu->id.a_loc   = lu->a;
+  }
   lu->id.perm_in = rank == 0 ? lu->perm : NULL;
   dmumps_c(&lu->id);
   PetscCheck(lu->id.INFOG(1) >= 0, comm, PETSC_ERR_LIB, "MUMPS analysis failed: INFOG(1) = %d, INFOG(2) = %d (Jacobian of %" PetscInt_FMT " rows)", (int)lu->id.INFOG(1), (int)lu->id.INFOG(2), N);
@@ -270,7 +285,8 @@ static PetscErrorCode PCSetUp_LUND(PC pc)
   }
   PetscCall(PetscLogEventBegin(lu->ev_factor, pc, 0, 0, 0));
   PetscCall(CopyValues(lu, A));
-  lu->id.a_loc = lu->a;
+  if (lu->id.ICNTL(18) == 0) lu->id.a = lu->a;
+  else lu->id.a_loc = lu->a;
   for (int attempt = 0;; attempt++) {
     lu->id.job = 2;
     dmumps_c(&lu->id);
@@ -356,7 +372,8 @@ static PetscErrorCode PCDestroy_LUND(PC pc)
     lu->id.job = -2;
     dmumps_c(&lu->id);
   }
-  PetscCall(PetscFree3(lu->irn, lu->jcn, lu->a));
+  PetscCall(PetscFree2(lu->irn, lu->jcn));
+  PetscCall(PetscFree(lu->abuf));
   PetscCall(PetscFree(lu->perm));
   PetscCall(VecScatterDestroy(&lu->toz));
   PetscCall(VecDestroy(&lu->bseq));
@@ -380,8 +397,9 @@ PetscErrorCode PCLUNDGetCounts(PC pc, PetscInt *nanalysis, PetscInt *nfactor)
 
 PetscErrorCode LUNDCheckOptions(MPI_Comm comm, const char prefix[])
 {
-  /* set by this solver: the ordering, distributed input, centralised right-hand side and solution */
-  static const int fixed[] = {7, 18, 20, 21, 28, 29};
+  /* set by this solver: no column permutation, the ordering, the input layout, centralised
+     right-hand side and solution */
+  static const int fixed[] = {6, 7, 18, 20, 21, 28, 29};
 
   PetscFunctionBeginUser;
   for (size_t k = 0; k < sizeof(fixed) / sizeof(fixed[0]); k++) {
@@ -389,7 +407,7 @@ PetscErrorCode LUNDCheckOptions(MPI_Comm comm, const char prefix[])
     PetscBool set;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-mat_mumps_icntl_%d", fixed[k]));
     PetscCall(PetscOptionsHasName(NULL, prefix, name, &set));
-    PetscCheck(!set, comm, PETSC_ERR_USER_INPUT, "%s: this MUMPS control is set by -lu_ordering nd (METIS ordering, distributed input); give -lu_ordering mumps to use MUMPS through PETSc", name);
+    PetscCheck(!set, comm, PETSC_ERR_USER_INPUT, "%s: this MUMPS control is set by -lu_ordering nd (METIS ordering, analysis of the pattern alone, data layout); give -lu_ordering mumps to use MUMPS through PETSc", name);
   }
   PetscFunctionReturn(0);
 }
@@ -419,9 +437,14 @@ PetscErrorCode PCSetLUND(PC pc)
   lu->id.ICNTL(2)  = 0;
   lu->id.ICNTL(3)  = 0;
   lu->id.ICNTL(4)  = 0;
+  lu->id.ICNTL(6)  = 0; /* no permutation by values: the analysis depends on the pattern alone */
   lu->id.ICNTL(7)  = 1;
   lu->id.ICNTL(8)  = 0; /* no scaling: see doc/design.md */
-  lu->id.ICNTL(18) = 3;
+  {
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    lu->id.ICNTL(18) = size == 1 ? 0 : 3; /* centralised on one rank, distributed input otherwise */
+  }
   lu->id.ICNTL(20) = 0;
   lu->id.ICNTL(21) = 0;
   lu->id.ICNTL(28) = 1;

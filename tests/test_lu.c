@@ -12,13 +12,6 @@
 
 static PetscMPIInt rank = 0;
 
-#define CHECK_ALL(cond, ...)                                                                 \
-  do {                                                                                       \
-    int c_ = (cond) ? 1 : 0, g_ = 0;                                                         \
-    PetscCallMPI(MPI_Allreduce(&c_, &g_, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD));            \
-    if (rank == 0) TU_CHECK(g_, __VA_ARGS__);                                                \
-  } while (0)
-
 /* graph of an nx x ny x nz node grid of hexahedra, 3 unknowns per node: unknown (node, c) is
    coupled to every unknown of the nodes sharing an element with it (diagonal left out) */
 static PetscErrorCode GridGraph(PetscInt nx, PetscInt ny, PetscInt nz, PetscInt *N, PetscInt **xadj, PetscInt **adj)

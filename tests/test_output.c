@@ -17,13 +17,6 @@
 
 static PetscMPIInt rank = 0;
 
-/* a check that every rank evaluates: it passes when it holds on all of them; rank 0 prints */
-#define CHECK_ALL(cond, ...)                                                                 \
-  do {                                                                                       \
-    int c_ = (cond) ? 1 : 0, g_ = 0;                                                         \
-    PetscCallMPI(MPI_Allreduce(&c_, &g_, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD));            \
-    if (rank == 0) TU_CHECK(g_, __VA_ARGS__);                                                \
-  } while (0)
 
 /* the test mesh: (nx+1) x 2 x 2 vertices, vertex (i,j,k) = i + (nx+1)*(j + 2*k) */
 static PetscReal Coord(PetscInt v, PetscInt c, PetscInt nx)

@@ -23,4 +23,15 @@ static inline double tu_reldiff(double a, double b, double floor_)
 }
 
 #define TU_RETURN() return (tu_failed > 255 ? 255 : tu_failed)
+
+#ifdef PETSCSYS_H
+/* a check that every rank evaluates: it passes when it holds on all of them; rank 0 (the file's
+   PetscMPIInt rank) prints */
+#define CHECK_ALL(cond, ...)                                                                 \
+  do {                                                                                       \
+    int c_ = (cond) ? 1 : 0, g_ = 0;                                                         \
+    PetscCallMPI(MPI_Allreduce(&c_, &g_, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD));            \
+    if (rank == 0) TU_CHECK(g_, __VA_ARGS__);                                                \
+  } while (0)
+#endif
 #endif
