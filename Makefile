@@ -5,15 +5,15 @@
 #   make bench    assembly throughput benchmark (writes doc/performance.md)
 
 CC       := mpicc
-PETSC_CFLAGS := $(shell pkg-config --cflags PETSc 2>/dev/null)
-PETSC_LIBS   := $(shell pkg-config --libs PETSc 2>/dev/null)
+PETSC_CFLAGS = $(shell pkg-config --cflags PETSc 2>/dev/null)
+PETSC_LIBS   = $(shell pkg-config --libs PETSc 2>/dev/null)
 HDF5_DIR := /usr/lib/x86_64-linux-gnu/hdf5/openmpi
-CPPFLAGS := -Iinclude $(PETSC_CFLAGS) -I/usr/include/hdf5/openmpi
+CPPFLAGS = -Iinclude $(PETSC_CFLAGS) -I/usr/include/hdf5/openmpi
 CFLAGS   ?= -O3 -march=native -flto=auto -g -std=c11 -Wall -Wextra -Wno-unused-parameter -fno-math-errno
-LDLIBS   := $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -ldmumps -lmumps_common -lmetis -lm
+LDLIBS   = $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -ldmumps -lmumps_common -lmetis -lm
 PYTHON   := $(shell /usr/bin/python3 -c "import h5py, matplotlib" >/dev/null 2>&1 && echo /usr/bin/python3 || echo python3)
 
-LIB_SRC  := $(filter-out src/main.c,$(wildcard src/*.c))
+LIB_SRC  := $(filter-out src/main.c,$(wildcard src/*.c src/*/*.c))
 LIB_OBJ  := $(LIB_SRC:src/%.c=build/%.o)
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(TEST_SRC:tests/%.c=bin/%)
@@ -29,7 +29,7 @@ $(DEPS_STAMP):
 deps: $(DEPS_STAMP)
 
 build/%.o: src/%.c $(wildcard include/*.h) | $(DEPS_STAMP)
-	@mkdir -p build
+	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
 
 build/lib.a: $(LIB_OBJ)
@@ -47,7 +47,7 @@ bin/test_%: tests/test_%.c tests/testutil.h build/lib.a $(wildcard include/*.h)
 SAN_FLAGS := -O1 -g -std=c11 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 SAN_OBJ   := $(LIB_SRC:src/%.c=build-san/%.o)
 build-san/%.o: src/%.c $(wildcard include/*.h) | $(DEPS_STAMP)
-	@mkdir -p build-san
+	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(SAN_FLAGS) -c $< -o $@
 bin-san/test_%: tests/test_%.c tests/testutil.h $(SAN_OBJ)
 	@mkdir -p bin-san
