@@ -1,44 +1,49 @@
-/* Finite-strain J2 elasto-plasticity with logarithmic elastic strains
-   (multiplicative split F = Fe Fp, Hencky elastic law, radial return in principal
-   log-strain space, exponential-map flow update), isotropic hardening.
-   Pure kernels on plain arrays: no MPI, no PETSc objects. */
+/* Materials: one interface, one registry of types (PETSc manner).
+
+   A Material is created on a communicator, gets its type from -material_type (default "j2")
+   and its parameters from the type's own options; what the element kernels call is its
+   MaterialKernel, a table of pure functions on plain arrays (no PETSc objects, no MPI), with
+   the history width per quadrature point chosen by the type at run time.
+
+   Types: "j2" (finite-strain J2 plasticity, include/material_j2.h). A new type is one file in
+   src/material/ plus one registration line in MaterialRegisterAll() (src/material/material.c);
+   include/material_impl.h is what a type's file (or a program registering its own type with
+   MaterialRegister) sees of the object. */
 #ifndef ATRITO_MATERIAL_H
 #define ATRITO_MATERIAL_H
+#include <petscsys.h>
+#include <petscviewer.h>
 
-typedef enum { HARDENING_LINEAR = 0, HARDENING_SWIFT = 1 } HardeningLaw;
-
-typedef struct {
-  double       E, nu;           /* Young's modulus, Poisson's ratio */
-  double       K, G;            /* bulk and shear moduli (set by MaterialParamsSetup) */
-  HardeningLaw law;
-  double       sy0, H;          /* linear:  sigma_y = sy0 + H * ep               */
-  double       swK, sweps0, swn;/* Swift:   sigma_y = swK * (sweps0 + ep)^swn    */
-  double       rtol;            /* relative tolerance of the scalar return map     */
-  int          maxit;           /* its iteration limit                             */
-} MaterialParams;
-
-/* History per quadrature point: inverse plastic right Cauchy-Green tensor
-   Cp^{-1} (xx, yy, zz, xy, yz, xz) and the equivalent plastic strain. */
-#define MAT_NHIST 7
-#define MAT_HIST_EP 6
-
-/* status codes of MaterialUpdate */
+/* status codes of MaterialKernel.update (and of the element kernels) */
 #define MAT_OK 0
-#define MAT_ERR_JACOBIAN 1   /* det F <= 0 */
-#define MAT_ERR_RETURNMAP 2  /* the scalar return map did not converge */
+#define MAT_ERR_JACOBIAN 1  /* det F <= 0 */
+#define MAT_ERR_RETURNMAP 2 /* the local return map (or any local iteration) did not converge */
 
-/* derive K, G; fill default tolerances if zero. Returns 0, or nonzero for invalid E/nu. */
-int    MaterialParamsSetup(MaterialParams *mp);
-/* sigma_y(ep) and its slope d sigma_y / d ep */
-double MaterialYieldStress(const MaterialParams *mp, double ep, double *dsy);
-/* Cp^{-1} = I, ep = 0 */
-void   MaterialHistoryInit(double h[MAT_NHIST]);
-/* Given the deformation gradient F (row-major, F[3*i+J]) and the committed history hn,
-   compute the Kirchhoff stress tau (full symmetric 3x3, row-major), the updated (trial)
-   history h, whether the step is plastic, and -- when dtau is not NULL -- the exact
-   derivative dtau[(3*i+j)*9 + 3*k+L] = d tau_ij / d F_kL (consistent with the return map).
-   Returns MAT_OK or an error status; never aborts. */
-int    MaterialUpdate(const MaterialParams *mp, const double F[9], const double hn[MAT_NHIST],
-                      double tau[9], double *dtau, double h[MAT_NHIST], int *plastic);
+typedef struct _p_Material *Material;
 
+/* what the element kernels call, on plain arrays: no PETSc objects, no MPI */
+typedef struct {
+  int         nhist; /* history doubles per quadrature point (chosen at run time by the type) */
+  const void *ctx;   /* the model's parameters, read-only in the kernels */
+  /* Given the deformation gradient F (row-major, F[3*i+J]) and the committed history hn[nhist],
+     compute the Kirchhoff stress tau (full symmetric 3x3, row-major), the updated (trial)
+     history h[nhist], whether the step is plastic (plastic may be NULL), and -- when dtau is
+     not NULL -- the exact derivative dtau[(3*i+j)*9 + 3*k+L] = d tau_ij / d F_kL.
+     Returns MAT_OK or an error status (then tau, dtau are zero and h = hn); never aborts. */
+  int (*update)(const void *ctx, const double F[9], const double *hn, double tau[9], double *dtau, double *h, int *plastic);
+  /* the history of the virgin material */
+  void (*history_init)(const void *ctx, double *h);
+  /* equivalent plastic strain of a history, for output */
+  double (*plastic_strain)(const void *ctx, const double *h);
+} MaterialKernel;
+
+/* add a type to the registry (create sets the object's kernel and operations) */
+PetscErrorCode MaterialRegister(const char name[], PetscErrorCode (*create)(Material));
+PetscErrorCode MaterialCreate(MPI_Comm comm, Material *mat);
+/* -material_type (default "j2"), then the type's own options; collective */
+PetscErrorCode MaterialSetFromOptions(Material mat);
+/* valid after MaterialSetFromOptions; owned by mat */
+PetscErrorCode MaterialGetKernel(Material mat, const MaterialKernel **k);
+PetscErrorCode MaterialView(Material mat, PetscViewer v);
+PetscErrorCode MaterialDestroy(Material *mat);
 #endif

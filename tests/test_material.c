@@ -1,10 +1,13 @@
-/* Unit tests of the 3x3 tensor utilities and the finite-strain J2 material kernel. */
+/* Unit tests of the 3x3 tensor utilities, the finite-strain J2 material kernel, and the
+   Material object of type j2: its options, their validation, and its kernel table. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
 
-#include "material.h"
+#include <petscsys.h>
+#include "material_j2.h"
+#include "options.h"
 #include "tensor.h"
 #include "testutil.h"
 
@@ -64,13 +67,13 @@ static void rot_diag(const double R[9], const double d[3], double A[9])
 static void eig_errors(const double A[9], double *rec, double *orth)
 {
   double lam[3], Q[9], B[9], QtQ[9];
-  const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const double Id[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   t3_sym_eig(A, lam, Q);
   rot_diag(Q, lam, B);
   t3_tmul(Q, Q, QtQ);
   const double nA = fnorm(A, 9);
   *rec  = fdiff(A, B, 9) / (nA > 0 ? nA : 1.0);
-  *orth = fdiff(QtQ, I, 9);
+  *orth = fdiff(QtQ, Id, 9);
 }
 
 static void sort3(double v[3])
@@ -95,9 +98,9 @@ static double von_mises(const double tau[9])
   return sqrt(1.5) * fnorm(s, 9);
 }
 
-static MaterialParams swift_params(void)
+static J2Params swift_params(void)
 {
-  MaterialParams mp;
+  J2Params mp;
   memset(&mp, 0, sizeof mp);
   mp.E = 69004.0;
   mp.nu = 0.3;
@@ -105,29 +108,29 @@ static MaterialParams swift_params(void)
   mp.swK = 589.0;
   mp.sweps0 = 1e-4;
   mp.swn = 0.216;
-  MaterialParamsSetup(&mp);
+  J2ParamsSetup(&mp);
   return mp;
 }
 
-static MaterialParams linear_params(double sy0, double H)
+static J2Params linear_params(double sy0, double H)
 {
-  MaterialParams mp;
+  J2Params mp;
   memset(&mp, 0, sizeof mp);
   mp.E = 69004.0;
   mp.nu = 0.3;
   mp.law = HARDENING_LINEAR;
   mp.sy0 = sy0;
   mp.H = H;
-  MaterialParamsSetup(&mp);
+  J2ParamsSetup(&mp);
   return mp;
 }
 
 /* relative Frobenius error of the analytic tangent against central differences */
-static double tangent_fd_error(const MaterialParams *mp, const double F[9], const double hn[MAT_NHIST], int *plastic)
+static double tangent_fd_error(const J2Params *mp, const double F[9], const double hn[J2_NHIST], int *plastic)
 {
-  double tau[9], dtau[81], fd[81], h[MAT_NHIST], tp[9], tm[9];
+  double tau[9], dtau[81], fd[81], h[J2_NHIST], tp[9], tm[9];
   int    pl;
-  MaterialUpdate(mp, F, hn, tau, dtau, h, plastic);
+  J2Update(mp, F, hn, tau, dtau, h, plastic);
   const double step = 1e-7 * fnorm(F, 9) / sqrt(3.0);
   for (int c = 0; c < 9; c++) {
     double Fp[9], Fm[9];
@@ -135,20 +138,20 @@ static double tangent_fd_error(const MaterialParams *mp, const double F[9], cons
     memcpy(Fm, F, sizeof Fm);
     Fp[c] += step;
     Fm[c] -= step;
-    MaterialUpdate(mp, Fp, hn, tp, NULL, h, &pl);
-    MaterialUpdate(mp, Fm, hn, tm, NULL, h, &pl);
+    J2Update(mp, Fp, hn, tp, NULL, h, &pl);
+    J2Update(mp, Fm, hn, tm, NULL, h, &pl);
     for (int r = 0; r < 9; r++) fd[9 * r + c] = (tp[r] - tm[r]) / (2.0 * step);
   }
   return fdiff(dtau, fd, 81) / fnorm(fd, 81);
 }
 
 /* closed-form uniaxial Kirchhoff stress: s = sigma_y(eps - s/E) (bisection) */
-static double uniaxial_exact(const MaterialParams *mp, double eps)
+static double uniaxial_exact(const J2Params *mp, double eps)
 {
-  double lo = 0.0, hi = MaterialYieldStress(mp, eps, NULL);
+  double lo = 0.0, hi = J2YieldStress(mp, eps, NULL);
   for (int it = 0; it < 200; it++) {
     const double s = 0.5 * (lo + hi);
-    if (s - MaterialYieldStress(mp, eps - s / mp->E, NULL) > 0.0) hi = s;
+    if (s - J2YieldStress(mp, eps - s / mp->E, NULL) > 0.0) hi = s;
     else lo = s;
   }
   return 0.5 * (lo + hi);
@@ -193,64 +196,64 @@ static void test_eig(void)
 
   /* t3_inv / products */
   double A[9], Ai[9], P[9], P2[9], At[9];
-  const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const double Id[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   for (int i = 0; i < 9; i++) A[i] = urand(&seed) + (i % 4 == 0 ? 2.0 : 0.0);
   const double det = t3_inv(A, Ai);
   t3_mul(A, Ai, P);
-  const double e1 = fdiff(P, I, 9);
+  const double e1 = fdiff(P, Id, 9);
   t3_transpose(A, At);
   t3_tmul(At, Ai, P);  /* A Ai */
   t3_mult(Ai, At, P2); /* Ai A  */
-  const double e2 = fdiff(P, I, 9) + fdiff(P2, I, 9);
+  const double e2 = fdiff(P, Id, 9) + fdiff(P2, Id, 9);
   TU_CHECK(e1 < 1e-14 && e2 < 1e-14 && fabs(det - t3_det(A)) < 1e-14 * fabs(det),
            "t3_inv/t3_mul/t3_tmul/t3_mult/t3_transpose: |A A^-1 - I| = %.2e, %.2e", e1, e2);
 }
 
 static void test_setup(void)
 {
-  MaterialParams mp = swift_params();
+  J2Params mp = swift_params();
   TU_CHECK(fabs(mp.K - 69004.0 / 1.2) < 1e-9 && fabs(mp.G - 69004.0 / 2.6) < 1e-9 && mp.rtol == 1e-12 && mp.maxit == 50,
-           "MaterialParamsSetup: K = %.6f, G = %.6f, rtol = %g, maxit = %d", mp.K, mp.G, mp.rtol, mp.maxit);
-  MaterialParams bad = mp;
+           "J2ParamsSetup: K = %.6f, G = %.6f, rtol = %g, maxit = %d", mp.K, mp.G, mp.rtol, mp.maxit);
+  J2Params bad = mp;
   int            r1, r2, r3;
   bad.nu = 0.5;
-  r1 = MaterialParamsSetup(&bad);
+  r1 = J2ParamsSetup(&bad);
   bad.nu = -1.0;
-  r2 = MaterialParamsSetup(&bad);
+  r2 = J2ParamsSetup(&bad);
   bad.nu = 0.3;
   bad.E = 0.0;
-  r3 = MaterialParamsSetup(&bad);
-  TU_CHECK(r1 && r2 && r3, "MaterialParamsSetup rejects nu = 0.5 (%d), nu = -1 (%d), E = 0 (%d)", r1, r2, r3);
+  r3 = J2ParamsSetup(&bad);
+  TU_CHECK(r1 && r2 && r3, "J2ParamsSetup rejects nu = 0.5 (%d), nu = -1 (%d), E = 0 (%d)", r1, r2, r3);
 
   /* yield stress and slope */
-  MaterialParams lin = linear_params(250.0, 1000.0);
+  J2Params lin = linear_params(250.0, 1000.0);
   double         d1, d2, e = 0.03, h = 1e-6;
-  const double   s1 = MaterialYieldStress(&mp, e, &d1);
-  const double   fd1 = (MaterialYieldStress(&mp, e + h, NULL) - MaterialYieldStress(&mp, e - h, NULL)) / (2 * h);
-  const double   s2 = MaterialYieldStress(&lin, e, &d2);
+  const double   s1 = J2YieldStress(&mp, e, &d1);
+  const double   fd1 = (J2YieldStress(&mp, e + h, NULL) - J2YieldStress(&mp, e - h, NULL)) / (2 * h);
+  const double   s2 = J2YieldStress(&lin, e, &d2);
   TU_CHECK(fabs(s1 - 589.0 * pow(1e-4 + e, 0.216)) < 1e-12 * s1 && fabs(d1 - fd1) < 1e-7 * d1 && s2 == 280.0 && d2 == 1000.0,
-           "MaterialYieldStress: Swift sy(0.03) = %.6f, slope %.6f (FD %.6f); linear sy = %g, slope %g", s1, d1, fd1, s2, d2);
+           "J2YieldStress: Swift sy(0.03) = %.6f, slope %.6f (FD %.6f); linear sy = %g, slope %g", s1, d1, fd1, s2, d2);
 }
 
 static void test_elastic(void)
 {
-  MaterialParams     mp = swift_params();
+  J2Params     mp = swift_params();
   unsigned long long seed = 777;
-  double             hn[MAT_NHIST], h[MAT_NHIST], tau[9], F[9], H[9];
+  double             hn[J2_NHIST], h[J2_NHIST], tau[9], F[9], H[9];
   int                pl, rc;
-  MaterialHistoryInit(hn);
+  J2HistoryInit(hn);
 
   /* small strain: tau ~ K tr(eps) I + 2G dev(eps), eps = sym(F - I) */
   for (int i = 0; i < 9; i++) H[i] = urand(&seed);
   for (int i = 0; i < 9; i++) F[i] = (i % 4 == 0 ? 1.0 : 0.0) + 1e-6 * H[i];
-  rc = MaterialUpdate(&mp, F, hn, tau, NULL, h, &pl);
+  rc = J2Update(&mp, F, hn, tau, NULL, h, &pl);
   double eps[9], lin[9];
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) eps[3 * i + j] = 0.5e-6 * (H[3 * i + j] + H[3 * j + i]);
   const double tr = eps[0] + eps[4] + eps[8];
   for (int i = 0; i < 9; i++) lin[i] = 2.0 * mp.G * eps[i] + (i % 4 == 0 ? (mp.K - 2.0 * mp.G / 3.0) * tr : 0.0);
   const double esmall = fdiff(tau, lin, 9) / fnorm(lin, 9);
-  TU_CHECK(rc == MAT_OK && !pl && esmall < 1e-5 && fdiff(h, hn, MAT_NHIST) == 0.0,
+  TU_CHECK(rc == MAT_OK && !pl && esmall < 1e-5 && fdiff(h, hn, J2_NHIST) == 0.0,
            "elastic small strain F = I + 1e-6 H: |tau - tau_lin|/|tau_lin| = %.2e (O(1e-6) expected), history unchanged", esmall);
 
   /* pure rotations of the undeformed state: zero stress */
@@ -258,9 +261,9 @@ static void test_elastic(void)
   double       R[9], Rz[9], Rob[9];
   rotation(z, 0.5 * PI, Rz);
   rotation(ob, 0.5 * PI, Rob);
-  rc = MaterialUpdate(&mp, Rz, hn, tau, NULL, h, &pl);
+  rc = J2Update(&mp, Rz, hn, tau, NULL, h, &pl);
   const double t1 = fnorm(tau, 9) / mp.E;
-  int          rc2 = MaterialUpdate(&mp, Rob, hn, tau, NULL, h, &pl);
+  int          rc2 = J2Update(&mp, Rob, hn, tau, NULL, h, &pl);
   const double t2 = fnorm(tau, 9) / mp.E;
   TU_CHECK(rc == MAT_OK && rc2 == MAT_OK && t1 < 1e-9 && t2 < 1e-9,
            "pure rotation 90 deg (z, oblique axis) of the undeformed state: |tau|/E = %.2e, %.2e", t1, t2);
@@ -270,24 +273,24 @@ static void test_elastic(void)
   const double F0[9] = {1.0008, 0.0003, -0.0002, 0.0001, 0.9996, 0.0004, -0.0003, 0.0002, 1.0002};
   const double F1[9] = {1.08, 0.03, -0.02, 0.01, 0.96, 0.04, -0.03, 0.02, 1.01};
   const double F2[9] = {1.12, 0.05, -0.01, 0.02, 0.93, 0.07, -0.05, 0.03, 1.04};
-  double       hc[MAT_NHIST];
-  MaterialUpdate(&mp, F1, hn, tau, NULL, hc, &pl); /* committed plastic history */
+  double       hc[J2_NHIST];
+  J2Update(&mp, F1, hn, tau, NULL, hc, &pl); /* committed plastic history */
   const double *Fs[2] = {F0, F2};
   const double *Hs[2] = {hn, hc};
   const char   *name[2] = {"elastic", "plastic, Cp^-1 != I"};
   for (int c = 0; c < 2; c++) {
-    double tau0[9], h0[MAT_NHIST], maxe = 0.0, maxh = 0.0;
+    double tau0[9], h0[J2_NHIST], maxe = 0.0, maxh = 0.0;
     int    pl0;
-    MaterialUpdate(&mp, Fs[c], Hs[c], tau0, NULL, h0, &pl0);
+    J2Update(&mp, Fs[c], Hs[c], tau0, NULL, h0, &pl0);
     for (int r = 0; r < 2; r++) {
-      double RF[9], Rt[9], T[9], h1[MAT_NHIST];
+      double RF[9], Rt[9], T[9], h1[J2_NHIST];
       memcpy(R, r == 0 ? Rz : Rob, sizeof R);
       t3_mul(R, Fs[c], RF);
-      MaterialUpdate(&mp, RF, Hs[c], tau, NULL, h1, &pl);
+      J2Update(&mp, RF, Hs[c], tau, NULL, h1, &pl);
       t3_mul(R, tau0, T);
       t3_mult(T, R, Rt);
       maxe = fmax(maxe, fdiff(tau, Rt, 9) / fnorm(tau0, 9));
-      maxh = fmax(maxh, fdiff(h1, h0, MAT_NHIST));
+      maxh = fmax(maxh, fdiff(h1, h0, J2_NHIST));
       if (pl != pl0) maxe = 1.0;
     }
     TU_CHECK(maxe < 1e-10 && maxh < 1e-12 && pl0 == c,
@@ -298,19 +301,19 @@ static void test_elastic(void)
 
 static void test_uniaxial(void)
 {
-  MaterialParams mp = swift_params();
-  double         hn[MAT_NHIST], h[MAT_NHIST], tau[9], dtau[81];
+  J2Params mp = swift_params();
+  double         hn[J2_NHIST], h[J2_NHIST], tau[9], dtau[81];
   const int      ninc = 200;
   double         lat = 1.0, maxerr = 0.0, maxlat = 0.0, maxres = 0.0, maxsym = 0.0, sig_end = 0.0;
   int            nplastic = 0, fail = 0, maxnewt = 0;
-  MaterialHistoryInit(hn);
+  J2HistoryInit(hn);
   for (int inc = 1; inc <= ninc; inc++) {
     const double eps = 0.5 * inc / ninc, lam = exp(eps);
     int          pl = 0, it;
     /* Newton on the lateral stretch: tau_22(lat) = 0 */
     for (it = 0; it < 30; it++) {
       const double F[9] = {lam, 0, 0, 0, lat, 0, 0, 0, lat};
-      if (MaterialUpdate(&mp, F, hn, tau, dtau, h, &pl) != MAT_OK) { fail = 1; break; }
+      if (J2Update(&mp, F, hn, tau, dtau, h, &pl) != MAT_OK) { fail = 1; break; }
       if (fabs(tau[4]) <= 1e-11 * fabs(tau[0])) break;
       lat -= tau[4] / (dtau[4 * 9 + 4] + dtau[4 * 9 + 8]);
     }
@@ -341,11 +344,11 @@ static void test_uniaxial(void)
 
 static void test_tangent(void)
 {
-  MaterialParams     sw = swift_params(), lin = linear_params(200.0, 2000.0), stiff = linear_params(1e9, 0.0);
+  J2Params     sw = swift_params(), lin = linear_params(200.0, 2000.0), stiff = linear_params(1e9, 0.0);
   unsigned long long seed = 4242;
-  double             hn[MAT_NHIST], hc[MAT_NHIST], tau[9], err;
+  double             hn[J2_NHIST], hc[J2_NHIST], tau[9], err;
   int                pl, pl1;
-  MaterialHistoryInit(hn);
+  J2HistoryInit(hn);
 
   /* elastic, small strain (Swift) */
   double F[9];
@@ -361,15 +364,15 @@ static void test_tangent(void)
   /* plastic, general non-symmetric F, committed history with Cp^{-1} != I and ep > 0 */
   const double F1[9] = {1.06, 0.04, -0.03, 0.02, 0.97, 0.05, -0.04, 0.01, 0.99};
   const double F2[9] = {1.10, 0.09, -0.02, 0.05, 0.94, 0.08, -0.06, 0.04, 1.01};
-  const MaterialParams *mps[2] = {&lin, &sw};
+  const J2Params *mps[2] = {&lin, &sw};
   const char           *nm[2] = {"linear hardening", "Swift"};
   for (int c = 0; c < 2; c++) {
-    MaterialUpdate(mps[c], F1, hn, tau, NULL, hc, &pl1);
+    J2Update(mps[c], F1, hn, tau, NULL, hc, &pl1);
     const double cpdev = fabs(hc[0] - 1) + fabs(hc[1] - 1) + fabs(hc[2] - 1) + fabs(hc[3]) + fabs(hc[4]) + fabs(hc[5]);
     err = tangent_fd_error(mps[c], F2, hc, &pl);
-    TU_CHECK(pl1 && pl && cpdev > 1e-2 && hc[MAT_HIST_EP] > 0 && err < 1e-6,
+    TU_CHECK(pl1 && pl && cpdev > 1e-2 && hc[J2_HIST_EP] > 0 && err < 1e-6,
              "tangent vs FD, plastic (%s), general F, committed ep = %.4f, sum|Cp^-1 - I| = %.3f: rel. error %.2e", nm[c],
-             hc[MAT_HIST_EP], cpdev, err);
+             hc[J2_HIST_EP], cpdev, err);
   }
 
   /* two equal trial eigenvalues: F = R diag(l1, l2, l2), elastic and plastic; F = I (triple) */
@@ -390,11 +393,11 @@ static void test_tangent(void)
   t3_mul(R, De, Fd);
   err = tangent_fd_error(&sw, Fd, hn, &pl);
   TU_CHECK(!pl && err < 1e-6, "tangent vs FD, elastic, two equal trial eigenvalues: rel. error %.2e", err);
-  const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  err = tangent_fd_error(&sw, I, hn, &pl);
+  const double Id[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  err = tangent_fd_error(&sw, Id, hn, &pl);
   /* at F = I the exact tangent is the linear elastic one: dtau_ij/dF_kL = lambda d_ij d_kL + G (d_ik d_jL + d_iL d_jk) */
-  double dtau[81], h[MAT_NHIST], C[81], lam = sw.K - 2.0 * sw.G / 3.0;
-  MaterialUpdate(&sw, I, hn, tau, dtau, h, &pl);
+  double dtau[81], h[J2_NHIST], C[81], lam = sw.K - 2.0 * sw.G / 3.0;
+  J2Update(&sw, Id, hn, tau, dtau, h, &pl);
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++)
       for (int k = 0; k < 3; k++)
@@ -406,25 +409,25 @@ static void test_tangent(void)
 
 static void test_failures(void)
 {
-  MaterialParams mp = swift_params();
-  double         hn[MAT_NHIST], h[MAT_NHIST], tau[9], dtau[81];
+  J2Params mp = swift_params();
+  double         hn[J2_NHIST], h[J2_NHIST], tau[9], dtau[81];
   int            pl, rc;
-  MaterialHistoryInit(hn);
+  J2HistoryInit(hn);
   const double Fbig[9] = {1.3, 0.02, 0, 0, 0.88, 0, 0.01, 0, 0.87};
 
-  MaterialParams m1 = mp;
+  J2Params m1 = mp;
   m1.maxit = 1;
-  rc = MaterialUpdate(&m1, Fbig, hn, tau, dtau, h, &pl);
-  TU_CHECK(rc == MAT_ERR_RETURNMAP && fdiff(h, hn, MAT_NHIST) == 0.0,
+  rc = J2Update(&m1, Fbig, hn, tau, dtau, h, &pl);
+  TU_CHECK(rc == MAT_ERR_RETURNMAP && fdiff(h, hn, J2_NHIST) == 0.0,
            "maxit = 1, large plastic step (Swift): status %d (MAT_ERR_RETURNMAP = %d), history left at hn", rc, MAT_ERR_RETURNMAP);
-  MaterialParams l1 = linear_params(200.0, 1500.0);
+  J2Params l1 = linear_params(200.0, 1500.0);
   l1.maxit = 1;
-  rc = MaterialUpdate(&l1, Fbig, hn, tau, NULL, h, &pl);
+  rc = J2Update(&l1, Fbig, hn, tau, NULL, h, &pl);
   TU_CHECK(rc == MAT_OK && pl, "maxit = 1, linear hardening: one Newton step is exact, status %d", rc);
 
   const double Fneg[9] = {-1, 0, 0, 0, 1, 0, 0, 0, 1}, Fzero[9] = {1, 0, 0, 1, 0, 0, 0, 0, 1};
-  const int    rneg = MaterialUpdate(&mp, Fneg, hn, tau, dtau, h, &pl);
-  const int    rzero = MaterialUpdate(&mp, Fzero, hn, tau, dtau, h, &pl);
+  const int    rneg = J2Update(&mp, Fneg, hn, tau, dtau, h, &pl);
+  const int    rzero = J2Update(&mp, Fzero, hn, tau, dtau, h, &pl);
   TU_CHECK(rneg == MAT_ERR_JACOBIAN && rzero == MAT_ERR_JACOBIAN, "det F < 0: status %d, det F = 0: status %d (MAT_ERR_JACOBIAN = %d)",
            rneg, rzero, MAT_ERR_JACOBIAN);
 
@@ -432,7 +435,7 @@ static void test_failures(void)
      and the result is on the yield surface q(tau) = sigma_y(ep) */
   const double e0s[3] = {1e-4, 1e-12, 0.0};
   for (int c = 0; c < 3; c++) {
-    MaterialParams m = mp;
+    J2Params m = mp;
     m.sweps0 = e0s[c];
     double       F[9];
     const double Fsmall[9] = {1.004, 0, 0, 0, 0.999, 0, 0, 0, 0.999};
@@ -440,9 +443,9 @@ static void test_failures(void)
     int          allok = 1;
     for (int s = 0; s < 2; s++) {
       memcpy(F, s == 0 ? Fbig : Fsmall, sizeof F);
-      rc = MaterialUpdate(&m, F, hn, tau, dtau, h, &pl);
+      rc = J2Update(&m, F, hn, tau, dtau, h, &pl);
       if (rc != MAT_OK || !pl) allok = 0;
-      const double sy = MaterialYieldStress(&m, h[MAT_HIST_EP], NULL);
+      const double sy = J2YieldStress(&m, h[J2_HIST_EP], NULL);
       worst = fmax(worst, fabs(von_mises(tau) - sy) / sy);
     }
     TU_CHECK(allok && worst < 1e-11, "Swift eps0 = %g: return map converges for large and small steps, |q - sigma_y|/sigma_y = %.2e",
@@ -452,37 +455,154 @@ static void test_failures(void)
 
 static void timing(void)
 {
-  MaterialParams mp = swift_params();
-  double         hn[MAT_NHIST], hc[MAT_NHIST], h[MAT_NHIST], tau[9], dtau[81], acc = 0.0;
+  J2Params mp = swift_params();
+  double         hn[J2_NHIST], hc[J2_NHIST], h[J2_NHIST], tau[9], dtau[81], acc = 0.0;
   int            pl;
-  MaterialHistoryInit(hn);
+  J2HistoryInit(hn);
   const double F1[9] = {1.06, 0.04, -0.03, 0.02, 0.97, 0.05, -0.04, 0.01, 0.99};
   double       F2[9] = {1.10, 0.09, -0.02, 0.05, 0.94, 0.08, -0.06, 0.04, 1.01};
-  MaterialUpdate(&mp, F1, hn, tau, NULL, hc, &pl);
+  J2Update(&mp, F1, hn, tau, NULL, hc, &pl);
   const int       N = 400000;
   struct timespec t0, t1;
   for (int pass = 0; pass < 2; pass++) {
     timespec_get(&t0, TIME_UTC);
     for (int i = 0; i < N; i++) {
       F2[0] = 1.10 + 1e-9 * (i & 7);
-      MaterialUpdate(&mp, F2, hc, tau, pass ? NULL : dtau, h, &pl);
+      J2Update(&mp, F2, hc, tau, pass ? NULL : dtau, h, &pl);
       acc += tau[0] + (pass ? 0.0 : dtau[40]);
     }
     timespec_get(&t1, TIME_UTC);
     const double ns = ((t1.tv_sec - t0.tv_sec) * 1e9 + (t1.tv_nsec - t0.tv_nsec)) / N;
-    printf("# timing: MaterialUpdate plastic (Swift) %s tangent: %.0f ns/call (plastic=%d, checksum %.3e)\n", pass ? "without" : "with",
+    printf("# timing: J2Update plastic (Swift) %s tangent: %.0f ns/call (plastic=%d, checksum %.3e)\n", pass ? "without" : "with",
            ns, pl, acc);
   }
 }
 
-int main(void)
+/* ---------- the Material object ---------- */
+static char ErrMsg[4096];
+
+static PetscErrorCode CaptureHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
+  PetscFunctionBeginUser;
+  if (p == PETSC_ERROR_INITIAL) snprintf(ErrMsg, sizeof(ErrMsg), "%s", mess ? mess : "");
+  PetscFunctionReturn(n);
+}
+
+/* a Material from the options opts; on error (*ierr != 0, message in ErrMsg) *mat is NULL */
+static PetscErrorCode MaterialFromOptions(const char *opts, Material *mat, PetscErrorCode *ierr)
+{
+  PetscFunctionBeginUser;
+  ErrMsg[0] = '\0';
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, opts));
+  PetscCall(MaterialCreate(PETSC_COMM_WORLD, mat));
+  PetscCall(PetscPushErrorHandler(CaptureHandler, NULL));
+  *ierr = MaterialSetFromOptions(*mat);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscOptionsClear(NULL));
+  if (*ierr) PetscCall(MaterialDestroy(mat));
+  PetscFunctionReturn(0);
+}
+
+static int same_params(const J2Params *a, const J2Params *b)
+{
+  return a->E == b->E && a->nu == b->nu && a->K == b->K && a->G == b->G && a->law == b->law && a->swK == b->swK && a->sweps0 == b->sweps0 && a->swn == b->swn &&
+         a->rtol == b->rtol && a->maxit == b->maxit && (a->law == HARDENING_SWIFT || (a->sy0 == b->sy0 && a->H == b->H));
+}
+
+static PetscErrorCode test_object(void)
+{
+  Material              mat;
+  PetscErrorCode        ierr;
+  const MaterialKernel *mk;
+
+  PetscFunctionBeginUser;
+  /* defaults: j2 with the Swift law of swift_params(); the kernel table gives J2Update's results bit for bit */
+  PetscCall(MaterialFromOptions("", &mat, &ierr));
+  TU_CHECK(!ierr, "Material from no options (status %d) [%s]", (int)ierr, ErrMsg);
+  if (ierr) PetscFunctionReturn(0);
+  PetscCall(MaterialGetKernel(mat, &mk));
+  {
+    const J2Params sw = swift_params();
+    double         hn[J2_NHIST], hi[J2_NHIST], hc[J2_NHIST], h1[J2_NHIST], h2[J2_NHIST], t1[9], t2[9], d1[81], d2[81];
+    int            p1, p2, r1, r2;
+    const double   F1[9] = {1.06, 0.04, -0.03, 0.02, 0.97, 0.05, -0.04, 0.01, 0.99};
+    const double   F2[9] = {1.10, 0.09, -0.02, 0.05, 0.94, 0.08, -0.06, 0.04, 1.01};
+    J2HistoryInit(hn);
+    mk->history_init(mk->ctx, hi);
+    J2Update(&sw, F1, hn, t1, NULL, hc, &p1);
+    r1 = J2Update(&sw, F2, hc, t1, d1, h1, &p1);
+    r2 = mk->update(mk->ctx, F2, hc, t2, d2, h2, &p2);
+    TU_CHECK(mk->nhist == J2_NHIST && same_params((const J2Params *)mk->ctx, &sw) && !memcmp(hi, hn, sizeof hn),
+             "default -material_type j2: nhist %d, parameters = the Swift defaults (E %g, nu %g, K %g, n %g, rtol %g, maxit %d)", mk->nhist, ((const J2Params *)mk->ctx)->E,
+             ((const J2Params *)mk->ctx)->nu, ((const J2Params *)mk->ctx)->swK, ((const J2Params *)mk->ctx)->swn, ((const J2Params *)mk->ctx)->rtol, ((const J2Params *)mk->ctx)->maxit);
+    TU_CHECK(r1 == r2 && p1 == p2 && p1 && !memcmp(t1, t2, sizeof t1) && !memcmp(d1, d2, sizeof d1) && !memcmp(h1, h2, sizeof h1) && mk->plastic_strain(mk->ctx, h2) == h2[J2_HIST_EP],
+             "MaterialKernel.update of j2 = J2Update bit for bit (tau, dtau, h, plastic), plastic_strain = h[J2_HIST_EP] = %.4f", h2[J2_HIST_EP]);
+  }
+  PetscCall(MaterialDestroy(&mat));
+
+  /* every option read, under its name */
+  PetscCall(MaterialFromOptions("-material_type j2 -material_E 70000 -material_nu 0.25 -material_hardening linear -material_yield 250 -material_hardening_modulus 1000 -material_return_rtol 1e-10 -material_return_maxit 7", &mat, &ierr));
+  if (!ierr) {
+    J2Params ex = linear_params(250.0, 1000.0);
+    ex.E        = 70000;
+    ex.nu       = 0.25;
+    ex.rtol     = 1e-10;
+    ex.maxit    = 7;
+    ex.swK      = 589.0; /* the Swift defaults stay */
+    ex.sweps0   = 1e-4;
+    ex.swn      = 0.216;
+    J2ParamsSetup(&ex);
+    PetscCall(MaterialGetKernel(mat, &mk));
+    TU_CHECK(same_params((const J2Params *)mk->ctx, &ex), "-material_E, _nu, _hardening linear, _yield, _hardening_modulus, _return_rtol, _return_maxit read");
+    PetscCall(MaterialDestroy(&mat));
+  } else TU_CHECK(0, "linear-hardening options: error %d [%s]", (int)ierr, ErrMsg);
+  PetscCall(MaterialFromOptions("-material_swift_K 600 -material_swift_eps0 0.002 -material_swift_n 0.3", &mat, &ierr));
+  if (!ierr) {
+    const J2Params *mp = NULL;
+    PetscCall(MaterialGetKernel(mat, &mk));
+    mp = (const J2Params *)mk->ctx;
+    TU_CHECK(mp->law == HARDENING_SWIFT && mp->swK == 600 && mp->sweps0 == 0.002 && mp->swn == 0.3, "-material_swift_K, _eps0, _n read");
+    PetscCall(MaterialDestroy(&mat));
+  } else TU_CHECK(0, "Swift options: error %d [%s]", (int)ierr, ErrMsg);
+  {
+    const char *closest = AtritoOptionsClosest("-material_swift_k");
+    TU_CHECK(closest && !strcmp(closest, "-material_swift_K"), "options recorded with their prefix: closest to -material_swift_k is %s", closest ? closest : "(none)");
+  }
+
+  /* validation: the messages of the case module, and unknown types */
+  {
+    const char *bad[][2] = {
+      {"-material_nu 0.5",                                          "-material_nu 0.5 must lie in (-1, 0.5)"       },
+      {"-material_E -1",                                            "-material_E -1. must be positive"              },
+      {"-material_swift_n 1.5",                                     "-material_swift_n 1.5 must lie in [0, 1)"      },
+      {"-material_swift_K 0",                                       "-material_swift_K 0. must be positive"         },
+      {"-material_swift_eps0 -1",                                   "-material_swift_eps0 -1. must be positive"     },
+      {"-material_hardening linear -material_yield -5",             "-material_yield -5. must be positive"          },
+      {"-material_hardening linear -material_hardening_modulus -1", "-material_hardening_modulus -1. must be >= 0"  },
+      {"-material_return_rtol 2",                                   "-material_return_rtol 2. must lie in (0, 1)"   },
+      {"-material_return_maxit 0",                                  "-material_return_maxit 0 must be >= 1"         },
+      {"-material_type hill48_nosuch",                              "-material_type hill48_nosuch: unknown material"},
+    };
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
+      PetscCall(MaterialFromOptions(bad[i][0], &mat, &ierr));
+      TU_CHECK(ierr == PETSC_ERR_USER_INPUT && !mat && strstr(ErrMsg, bad[i][1]), "%s: refused with '%s' [%s]", bad[i][0], bad[i][1], ErrMsg);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   test_eig();
   test_setup();
   test_elastic();
   test_uniaxial();
   test_tangent();
   test_failures();
+  PetscCall(test_object());
   timing();
+  PetscCall(PetscFinalize());
   TU_RETURN();
 }

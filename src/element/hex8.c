@@ -11,10 +11,16 @@
                                + alpha/3 (g_aj Tau_ij,kL F_kL) (g0_bm - g_bm)
                                - taubar_ij g_bj g_am ]
    with Tau = d tau / d F evaluated at Fbar (material kernel). Without F-bar alpha = 1 and
-   the second term vanishes. */
+   the second term vanishes.
+
+   The first part of this file is the formulation on plain arrays (include/element_hex8.h); the
+   second is the element type "hex8": its option -fe_fbar, view and descriptor. */
 #include <math.h>
 #include <string.h>
-#include "fe.h"
+
+#include "element_hex8.h"
+#include "element_impl.h"
+#include "options.h"
 #include "tensor.h"
 
 #define GP 0.57735026918962576451
@@ -27,6 +33,10 @@ const double hex8_nodes[8][3] = {
 const double hex8_gauss[HEX8_NQP][3] = {
   {-GP, -GP, -GP}, {GP, -GP, -GP}, {GP, GP, -GP}, {-GP, GP, -GP},
   {-GP, -GP, GP},  {GP, -GP, GP},  {GP, GP, GP},  {-GP, GP, GP}
+};
+
+const int hex8_faces[6][4] = {
+  {0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}
 };
 
 void hex8_shape(const double xi[3], double N[8], double dN[8][3])
@@ -74,11 +84,11 @@ double hex8_min_jacobian(const double X[8][3])
   double dNdX[8][3], m = INFINITY;
   for (int q = 0; q < HEX8_NQP; q++) {
     const double d = hex8_gradient(X, hex8_gauss[q], dNdX);
-    if (d < m) m = d;
+    if (d < m || isnan(d)) m = d;
   }
   for (int q = 0; q < 8; q++) {
     const double d = hex8_gradient(X, hex8_nodes[q], dNdX);
-    if (d < m) m = d;
+    if (d < m || isnan(d)) m = d;
   }
   return m;
 }
@@ -90,12 +100,13 @@ static void spatial_gradient(const double dNdX[8][3], const double Finv[9], doub
     for (int j = 0; j < 3; j++) g[a][j] = dNdX[a][0] * Finv[j] + dNdX[a][1] * Finv[3 + j] + dNdX[a][2] * Finv[6 + j];
 }
 
-int hex8_element(const MaterialParams *mp, const ElementOptions *eo, const double X[8][3], const double u[8][3], const double hn[][MAT_NHIST], double fe[24], double *ke, double h[][MAT_NHIST], ElementInfo *info)
+int hex8_element(const Hex8Options *eo, const MaterialKernel *mat, const double X[8][3], const double u[8][3], const double *hn, double fe[24], double *ke, double *h, ElementInfo *info)
 {
   static const double centre[3] = {0, 0, 0};
   double dNdX0[8][3], F0[9], F0inv[9], g0[8][3], J0 = 1.0;
   double dtau[81], tau[9];
   int    nplastic = 0;
+  const int nh = mat->nhist; /* history doubles per quadrature point */
 
   memset(fe, 0, 24 * sizeof(double));
   if (ke) memset(ke, 0, 24 * 24 * sizeof(double));
@@ -124,7 +135,7 @@ int hex8_element(const MaterialParams *mp, const ElementOptions *eo, const doubl
     for (int k = 0; k < 9; k++) Fb[k] = alpha * F[k];
 
     int plastic = 0;
-    const int st = MaterialUpdate(mp, Fb, hn[q], tau, ke ? dtau : NULL, h[q], &plastic);
+    const int st = mat->update(mat->ctx, Fb, hn + (size_t)q * nh, tau, ke ? dtau : NULL, h + (size_t)q * nh, &plastic);
     if (st != MAT_OK) return st;
     nplastic += plastic;
     const double w = detX; /* unit Gauss weights */
@@ -137,7 +148,7 @@ int hex8_element(const MaterialParams *mp, const ElementOptions *eo, const doubl
       const double Jb = alpha * alpha * alpha * J, s[6] = {tau[0] / Jb, tau[4] / Jb, tau[8] / Jb, tau[1] / Jb, tau[5] / Jb, tau[2] / Jb};
       const double p = (s[0] + s[1] + s[2]) / 3.0, d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
       info->mises += sqrt(1.5 * (d0 * d0 + d1 * d1 + d2 * d2 + 2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]))) / HEX8_NQP;
-      info->ep += h[q][MAT_HIST_EP] / HEX8_NQP;
+      info->ep += mat->plastic_strain(mat->ctx, h + (size_t)q * nh) / HEX8_NQP;
       for (int k = 0; k < 6; k++) info->sigma[k] += s[k] / HEX8_NQP;
     }
 
@@ -177,4 +188,70 @@ int hex8_element(const MaterialParams *mp, const ElementOptions *eo, const doubl
   }
   if (info) info->nplastic = nplastic;
   return MAT_OK;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* the element type "hex8"                                                                     */
+/* ------------------------------------------------------------------------------------------ */
+static int Hex8Kernel(const void *ctx, const MaterialKernel *mat, const double *X, const double *u, const double *hn, double *fe, double *ke, double *h, ElementInfo *info)
+{
+  return hex8_element((const Hex8Options *)ctx, mat, (const double(*)[3])X, (const double(*)[3])u, hn, fe, ke, h, info);
+}
+
+static double Hex8MinJacobian(const double *X)
+{
+  return hex8_min_jacobian((const double(*)[3])X);
+}
+
+static PetscErrorCode ElementSetFromOptions_Hex8(Element el)
+{
+  Hex8Options *eo   = (Hex8Options *)el->data;
+  PetscBool    fbar = eo->fbar ? PETSC_TRUE : PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(el->comm, "fe_", "Element hex8: trilinear hexahedron", "Element");
+  PetscCall(PetscOptionsBool("-fbar", "F-bar treatment of the volumetric part", NULL, fbar, &fbar, NULL));
+  PetscOptionsEnd();
+  eo->fbar = fbar ? 1 : 0;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ElementView_Hex8(Element el, PetscViewer v)
+{
+  const Hex8Options *eo = (const Hex8Options *)el->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "8 nodes, 2x2x2 Gauss points, %s\n", eo->fbar ? "F-bar (centroid dilatation)" : "standard displacement formulation"));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ElementDestroy_Hex8(Element el)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(el->data));
+  PetscFunctionReturn(0);
+}
+
+PETSC_INTERN PetscErrorCode ElementCreate_Hex8(Element el);
+PetscErrorCode ElementCreate_Hex8(Element el)
+{
+  Hex8Options *eo;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&eo));
+  eo->fbar               = 1;
+  el->data               = eo;
+  el->ops.setfromoptions = ElementSetFromOptions_Hex8;
+  el->ops.view           = ElementView_Hex8;
+  el->ops.destroy        = ElementDestroy_Hex8;
+  el->kernel.name         = "hex8";
+  el->kernel.nen          = 8;
+  el->kernel.nqp          = HEX8_NQP;
+  el->kernel.nstate       = 0;
+  el->kernel.nface        = 6;
+  el->kernel.face         = hex8_faces;
+  el->kernel.ctx          = eo;
+  el->kernel.kernel       = Hex8Kernel;
+  el->kernel.min_jacobian = Hex8MinJacobian;
+  PetscFunctionReturn(0);
 }

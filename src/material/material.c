@@ -1,239 +1,143 @@
-/* Finite-strain J2 elasto-plasticity with logarithmic elastic strains
-   (Simo 1992; Eterovic & Bathe 1990; de Souza Neto, Peric & Owen (EPO),
-   "Computational Methods for Plasticity", ch. 14).
+/* Materials: the object, the registry of types and the options common to all of them.
 
-   F = Fe Fp, b_e = Fe Fe^T, Cp^{-1} = Fp^{-1} Fp^{-T}. Trial state b_tr = F Cp^{-1}_n F^T,
-   eps_tr = 1/2 ln b_tr; the small-strain J2 radial return (EPO ch. 7) acts on the principal
-   logarithmic strains; the exponential-map flow update gives b_e = exp(2 eps_e) coaxial with
-   b_tr. Everything is computed in the eigenbasis of b_tr. */
-#include "material.h"
+   Adding a material model (a user material, Hill 48, ...):
+     1. write src/material/<name>.c with the model's kernels on plain arrays and
+        PetscErrorCode MaterialCreate_<Name>(Material mat), which allocates the parameters with
+        their defaults in mat->data and fills mat->kernel (nhist -- the history doubles per
+        quadrature point, chosen at run time if need be --, ctx = mat->data, update,
+        history_init, plastic_strain) and mat->ops (setfromoptions: reads the model's options
+        in its own PetscOptionsBegin block with the prefix "material_", validates them; view;
+        destroy: frees mat->data); see j2.c and include/material_impl.h;
+     2. declare MaterialCreate_<Name> below and add its line to MaterialRegisterAll().
+   -material_type <name> then selects it; elements take the history width from kernel.nhist.
+   A program may also register a type of its own with MaterialRegister() before
+   MaterialSetFromOptions(). */
+#include <string.h>
 
-#include <float.h>
-#include <math.h>
-#include <stddef.h>
+#include "material_impl.h"
+#include "options.h"
 
-#include "tensor.h"
+static PetscFunctionList MaterialList;
+static PetscBool         MaterialRegisterAllCalled;
+static char              MaterialTypeNames[256]; /* "j2, ..." for the error message */
 
-int MaterialParamsSetup(MaterialParams *mp)
+static PetscErrorCode MaterialFinalizePackage(void)
 {
-  if (!(mp->E > 0.0) || !(mp->nu > -1.0) || !(mp->nu < 0.5)) return 1;
-  mp->K = mp->E / (3.0 * (1.0 - 2.0 * mp->nu));
-  mp->G = mp->E / (2.0 * (1.0 + mp->nu));
-  if (mp->rtol <= 0.0) mp->rtol = 1e-12;
-  if (mp->maxit <= 0) mp->maxit = 50;
-  return 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListDestroy(&MaterialList));
+  MaterialRegisterAllCalled = PETSC_FALSE;
+  MaterialTypeNames[0]      = '\0';
+  PetscFunctionReturn(0);
 }
 
-double MaterialYieldStress(const MaterialParams *mp, double ep, double *dsy)
+/* the create functions of the types (src/material/<name>.c) */
+PETSC_INTERN PetscErrorCode MaterialCreate_J2(Material);
+
+static PetscErrorCode MaterialRegisterAll(void)
 {
-  double sy, h;
-  if (mp->law == HARDENING_SWIFT) {
-    /* sigma_y = K (eps0 + ep)^n,  d sigma_y/d ep = n K (eps0 + ep)^(n-1) */
-    const double x = mp->sweps0 + ep;
-    if (x > 0.0) {
-      sy = mp->swK * pow(x, mp->swn);
-      h  = mp->swn * sy / x;
-    } else { /* limit x -> 0+ (slope infinite for n < 1) */
-      sy = mp->swn > 0.0 ? 0.0 : mp->swK;
-      h  = mp->swn == 1.0 ? mp->swK : (mp->swn < 1.0 && mp->swn > 0.0 ? HUGE_VAL : 0.0);
-    }
-  } else {
-    sy = mp->sy0 + mp->H * ep;
-    h  = mp->H;
-  }
-  if (dsy) *dsy = h;
-  return sy;
+  PetscFunctionBeginUser;
+  if (MaterialRegisterAllCalled) PetscFunctionReturn(0);
+  MaterialRegisterAllCalled = PETSC_TRUE;
+  PetscCall(PetscRegisterFinalize(MaterialFinalizePackage));
+  /* one line per material type */
+  PetscCall(MaterialRegister("j2", MaterialCreate_J2));
+  PetscFunctionReturn(0);
 }
 
-void MaterialHistoryInit(double h[MAT_NHIST])
+PetscErrorCode MaterialRegister(const char name[], PetscErrorCode (*create)(Material))
 {
-  h[0] = h[1] = h[2] = 1.0;
-  h[3] = h[4] = h[5] = 0.0;
-  h[MAT_HIST_EP] = 0.0;
+  PetscErrorCode (*old)(Material) = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(MaterialRegisterAll());
+  PetscCall(PetscFunctionListFind(MaterialList, name, &old));
+  PetscCall(PetscFunctionListAdd(&MaterialList, name, create));
+  if (!old) {
+    if (MaterialTypeNames[0]) PetscCall(PetscStrlcat(MaterialTypeNames, ", ", sizeof(MaterialTypeNames)));
+    PetscCall(PetscStrlcat(MaterialTypeNames, name, sizeof(MaterialTypeNames)));
+  }
+  PetscFunctionReturn(0);
 }
 
-/* Scalar return map (radial return, EPO ch. 7):  r(dg) = q_tr - 3G dg - sigma_y(ep_n + dg) = 0, dg > 0.
-   r(0) > 0 and r(q_tr/3G) = -sigma_y <= 0 bracket the root; Newton steps that leave the
-   current bracket (or are not finite, e.g. an infinite Swift slope at ep = 0) are replaced
-   by bisection; maxit bounds the number of updates. Returns 0 on convergence with dg and
-   H' = d sigma_y/d ep at ep_n + dg. */
-static int return_map(const MaterialParams *mp, double q_tr, double ep_n, double *dg_out, double *Hp_out)
+PetscErrorCode MaterialCreate(MPI_Comm comm, Material *mat)
 {
-  const double G3  = 3.0 * mp->G;
-  const double tol = mp->rtol * q_tr;
-  double       lo = 0.0, hi = q_tr / G3, dg = 0.0, Hp;
-  {
-    const double syhi = MaterialYieldStress(mp, ep_n + hi, NULL);
-    if (!(syhi >= 0.0)) return 1; /* no bracket (softening to negative yield stress) */
-  }
-  for (int it = 0;; it++) {
-    const double sy = MaterialYieldStress(mp, ep_n + dg, &Hp);
-    const double r  = q_tr - G3 * dg - sy;
-    if (fabs(r) <= tol) break;
-    if (it >= mp->maxit) return 1;
-    if (r > 0.0) lo = dg;
-    else hi = dg;
-    double dn = dg + r / (G3 + Hp); /* Newton: dr/ddg = -(3G + H') */
-    if (!(dn > lo && dn < hi)) dn = 0.5 * (lo + hi);
-    if (fabs(dn - dg) <= 4.0 * DBL_EPSILON * dn) { /* stalled at round-off */
-      dg = dn;
-      MaterialYieldStress(mp, ep_n + dg, &Hp);
-      break;
-    }
-    dg = dn;
-  }
-  *dg_out = dg;
-  *Hp_out = Hp;
-  return 0;
+  PetscFunctionBeginUser;
+  PetscCheck(mat, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "null pointer: argument 2");
+  PetscCall(MaterialRegisterAll());
+  PetscCall(PetscNew(mat));
+  (*mat)->comm = comm;
+  PetscFunctionReturn(0);
 }
 
-/* (ln x - ln y)/(x - y) for x, y > 0, accurate also for x ~ y: with m = (x+y)/2,
-   t = (x-y)/(x+y):  ln x - ln y = 2 atanh(t), x - y = 2 m t  =>  atanh(t)/(m t),
-   series 1 + t^2/3 + t^4/5 for |t| < 1e-4 (truncation t^6/7 < 1e-24). */
-static inline double dlog_ratio(double x, double y)
+/* drop the current type's data and operations */
+static PetscErrorCode MaterialReset(Material mat)
 {
-  const double m = 0.5 * (x + y), t = (x - y) / (x + y);
-  if (fabs(t) < 1e-4) {
-    const double t2 = t * t;
-    return (1.0 + t2 * (1.0 / 3.0 + 0.2 * t2)) / m;
-  }
-  return atanh(t) / (m * t);
+  PetscFunctionBeginUser;
+  if (mat->ops.destroy) PetscCall(mat->ops.destroy(mat));
+  mat->data = NULL;
+  PetscCall(PetscMemzero(&mat->ops, sizeof(mat->ops)));
+  PetscCall(PetscMemzero(&mat->kernel, sizeof(mat->kernel)));
+  mat->type_name[0] = '\0';
+  PetscFunctionReturn(0);
 }
 
-static void fail_outputs(const double hn[MAT_NHIST], double tau[9], double *dtau, double h[MAT_NHIST])
+PetscErrorCode MaterialSetFromOptions(Material mat)
 {
-  for (int i = 0; i < 9; i++) tau[i] = 0.0;
-  if (dtau)
-    for (int i = 0; i < 81; i++) dtau[i] = 0.0;
-  for (int i = 0; i < MAT_NHIST; i++) h[i] = hn[i];
+  char      type[sizeof(mat->type_name)];
+  PetscBool same;
+  PetscErrorCode (*create)(Material) = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCheck(mat, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "null pointer: argument 1");
+  PetscCall(PetscStrncpy(type, mat->type_name[0] ? mat->type_name : "j2", sizeof(type)));
+  PetscOptionsBegin(mat->comm, "material_", "Material", "Material");
+  PetscCall(PetscOptionsFList("-type", "Material model", NULL, MaterialList, type, type, sizeof(type), NULL));
+  PetscOptionsEnd();
+  PetscCall(PetscFunctionListFind(MaterialList, type, &create));
+  PetscCheck(create, mat->comm, PETSC_ERR_USER_INPUT, "-material_type %s: unknown material (registered: %s)", type, MaterialTypeNames);
+  PetscCall(PetscStrcmp(type, mat->type_name, &same));
+  if (!same) {
+    PetscCall(MaterialReset(mat));
+    PetscCall(create(mat));
+    PetscCheck(mat->kernel.update && mat->kernel.history_init && mat->kernel.plastic_strain && mat->kernel.nhist >= 0, mat->comm, PETSC_ERR_PLIB, "material type %s: incomplete kernel", type);
+    PetscCall(PetscStrncpy(mat->type_name, type, sizeof(mat->type_name)));
+  }
+  if (mat->ops.setfromoptions) PetscCall(mat->ops.setfromoptions(mat));
+  PetscFunctionReturn(0);
 }
 
-int MaterialUpdate(const MaterialParams *mp, const double F[9], const double hn[MAT_NHIST], double tau[9],
-                   double *dtau, double h[MAT_NHIST], int *plastic)
+PetscErrorCode MaterialGetKernel(Material mat, const MaterialKernel **k)
 {
-  const double K = mp->K, G = mp->G;
-  const double s32 = 1.224744871391589049; /* sqrt(3/2) */
-  if (plastic) *plastic = 0;
+  PetscFunctionBeginUser;
+  PetscCheck(mat && k, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "null pointer argument");
+  PetscCheck(mat->type_name[0], mat->comm, PETSC_ERR_ORDER, "material has no type: call MaterialSetFromOptions() first");
+  *k = &mat->kernel;
+  PetscFunctionReturn(0);
+}
 
-  const double J = t3_det(F);
-  if (!(J > 0.0) || !isfinite(J)) {
-    fail_outputs(hn, tau, dtau, h);
-    return MAT_ERR_JACOBIAN;
+PetscErrorCode MaterialView(Material mat, PetscViewer v)
+{
+  PetscBool ascii;
+
+  PetscFunctionBeginUser;
+  PetscCheck(mat, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "null pointer: argument 1");
+  if (!v) v = PETSC_VIEWER_STDOUT_(mat->comm);
+  PetscCall(PetscObjectTypeCompare((PetscObject)v, PETSCVIEWERASCII, &ascii));
+  if (!ascii) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(v, "Material: type %s\n", mat->type_name[0] ? mat->type_name : "(not set)"));
+  if (mat->ops.view) {
+    PetscCall(PetscViewerASCIIPushTab(v));
+    PetscCall(mat->ops.view(mat, v));
+    PetscCall(PetscViewerASCIIPopTab(v));
   }
+  PetscFunctionReturn(0);
+}
 
-  /* trial elastic left Cauchy-Green tensor b_tr = F Cp^{-1}_n F^T */
-  const double Cpi[9] = {hn[0], hn[3], hn[5], hn[3], hn[1], hn[4], hn[5], hn[4], hn[2]};
-  double       Gm[9], b[9], lam[3], Q[9];
-  t3_mult(Cpi, F, Gm); /* Gm = Cp^{-1} F^T */
-  t3_mul(F, Gm, b);
-  b[1] = b[3] = 0.5 * (b[1] + b[3]);
-  b[2] = b[6] = 0.5 * (b[2] + b[6]);
-  b[5] = b[7] = 0.5 * (b[5] + b[7]);
-  t3_sym_eig(b, lam, Q);
-  if (!(lam[0] > 0.0 && lam[1] > 0.0 && lam[2] > 0.0)) {
-    fail_outputs(hn, tau, dtau, h);
-    return MAT_ERR_JACOBIAN;
-  }
-
-  /* principal trial log strains, volumetric/deviatoric split, trial von Mises stress */
-  double e[3], ed[3];
-  for (int a = 0; a < 3; a++) e[a] = 0.5 * log(lam[a]);
-  const double ev = e[0] + e[1] + e[2];
-  for (int a = 0; a < 3; a++) ed[a] = e[a] - ev / 3.0;
-  const double nrm  = sqrt(ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2]);
-  const double q_tr = s32 * 2.0 * G * nrm; /* q = sqrt(3/2) |2G dev eps| */
-  const double ep_n = hn[MAT_HIST_EP];
-
-  /* c1, c2: coefficients of the small-strain consistent J2 tangent (EPO ch. 7)
-     D = K 1(x)1 + 2G c1 I_dev + c2 N(x)N,  elastic: c1 = 1, c2 = 0 */
-  double c1 = 1.0, c2 = 0.0, dg = 0.0, n[3] = {0.0, 0.0, 0.0};
-  int    isplastic = 0;
-  if (q_tr > 0.0 && q_tr - MaterialYieldStress(mp, ep_n, NULL) > 0.0) {
-    double Hp;
-    if (return_map(mp, q_tr, ep_n, &dg, &Hp)) {
-      fail_outputs(hn, tau, dtau, h);
-      return MAT_ERR_RETURNMAP;
-    }
-    isplastic = 1;
-    for (int a = 0; a < 3; a++) n[a] = ed[a] / nrm;
-    c1 = 1.0 - 3.0 * G * dg / q_tr;
-    c2 = 6.0 * G * G * (dg / q_tr - 1.0 / (3.0 * G + Hp));
-    if (!isfinite(c2)) c2 = 6.0 * G * G * dg / q_tr; /* non-finite H': take 1/(3G+H') -> 0 */
-  }
-
-  /* principal Kirchhoff stress (Hencky law + radial return): tau_a = K ev + 2G (1 - 3G dg/q_tr) ed_a */
-  double tp[3];
-  for (int a = 0; a < 3; a++) tp[a] = K * ev + 2.0 * G * c1 * ed[a];
-  /* tau = Q diag(tp) Q^T */
-  for (int i = 0; i < 3; i++)
-    for (int j = i; j < 3; j++) {
-      const double v = Q[3 * i] * tp[0] * Q[3 * j] + Q[3 * i + 1] * tp[1] * Q[3 * j + 1] + Q[3 * i + 2] * tp[2] * Q[3 * j + 2];
-      tau[3 * i + j] = tau[3 * j + i] = v;
-    }
-
-  /* history update */
-  if (isplastic) {
-    /* eps_e = eps_tr - dg sqrt(3/2) n; b_e = exp(2 eps_e) = Q diag(lam_a exp(-2 sqrt(3/2) dg n_a)) Q^T;
-       Cp^{-1} = F^{-1} b_e F^{-T} (exponential-map flow update) */
-    double be[3], Fi[9], B[9], Y[9], C[9];
-    for (int a = 0; a < 3; a++) be[a] = exp(2.0 * (e[a] - dg * s32 * n[a]));
-    for (int i = 0; i < 3; i++)
-      for (int j = i; j < 3; j++)
-        B[3 * i + j] = B[3 * j + i] = Q[3 * i] * be[0] * Q[3 * j] + Q[3 * i + 1] * be[1] * Q[3 * j + 1] + Q[3 * i + 2] * be[2] * Q[3 * j + 2];
-    t3_inv(F, Fi);
-    t3_mul(Fi, B, Y);
-    t3_mult(Y, Fi, C);
-    h[0] = C[0];
-    h[1] = C[4];
-    h[2] = C[8];
-    h[3] = 0.5 * (C[1] + C[3]);
-    h[4] = 0.5 * (C[5] + C[7]);
-    h[5] = 0.5 * (C[2] + C[6]);
-    h[MAT_HIST_EP] = ep_n + dg;
-  } else {
-    for (int i = 0; i < MAT_NHIST; i++) h[i] = hn[i];
-  }
-  if (plastic) *plastic = isplastic;
-  if (!dtau) return MAT_OK;
-
-  /* Tangent d tau / d F_kL, in the eigenbasis of b_tr:
-     d b_tr = dF Gm + (dF Gm)^T; for dF = e_k (x) E_L:  (Q^T db Q)_ab = u_a w_b + w_a u_b with
-     u_a = Q_ka, w_a = sum_n Gm_Ln Q_na = (Gm Q)_La.
-     d eps_ab = 1/2 Gamma_ab (Q^T db Q)_ab, Gamma_ab = (ln lam_a - ln lam_b)/(lam_a - lam_b)
-     (Daleckii-Krein), Gamma_aa = 1/lam_a.  d tau' = D : d eps', d tau = Q d tau' Q^T. */
-  double GQ[9];
-  t3_mul(Gm, Q, GQ);
-  const double g01 = G * c1 * dlog_ratio(lam[0], lam[1]); /* 2G c1 * (1/2 Gamma_ab) */
-  const double g02 = G * c1 * dlog_ratio(lam[0], lam[2]);
-  const double g12 = G * c1 * dlog_ratio(lam[1], lam[2]);
-  const double il[3] = {1.0 / lam[0], 1.0 / lam[1], 1.0 / lam[2]};
-  const double G2c1 = 2.0 * G * c1;
-  for (int k = 0; k < 3; k++) {
-    const double *u = Q + 3 * k;
-    for (int L = 0; L < 3; L++) {
-      const double *w = GQ + 3 * L;
-      /* diagonal of d eps' : 1/2 Gamma_aa * 2 u_a w_a */
-      const double d0 = u[0] * w[0] * il[0], d1 = u[1] * w[1] * il[1], d2 = u[2] * w[2] * il[2];
-      const double tr = d0 + d1 + d2, nd = n[0] * d0 + n[1] * d1 + n[2] * d2;
-      const double vol = (K - G2c1 / 3.0) * tr;
-      double       X[9];
-      X[0] = vol + G2c1 * d0 + c2 * n[0] * nd;
-      X[4] = vol + G2c1 * d1 + c2 * n[1] * nd;
-      X[8] = vol + G2c1 * d2 + c2 * n[2] * nd;
-      X[1] = X[3] = g01 * (u[0] * w[1] + w[0] * u[1]);
-      X[2] = X[6] = g02 * (u[0] * w[2] + w[0] * u[2]);
-      X[5] = X[7] = g12 * (u[1] * w[2] + w[1] * u[2]);
-      /* Y = Q X, T = Y Q^T (symmetric) */
-      double Y[9];
-      t3_mul(Q, X, Y);
-      const int col = 3 * k + L;
-      for (int i = 0; i < 3; i++)
-        for (int j = i; j < 3; j++) {
-          const double v = Y[3 * i] * Q[3 * j] + Y[3 * i + 1] * Q[3 * j + 1] + Y[3 * i + 2] * Q[3 * j + 2];
-          dtau[(3 * i + j) * 9 + col] = v;
-          dtau[(3 * j + i) * 9 + col] = v;
-        }
-    }
-  }
-  return MAT_OK;
+PetscErrorCode MaterialDestroy(Material *mat)
+{
+  PetscFunctionBeginUser;
+  if (!mat || !*mat) PetscFunctionReturn(0);
+  PetscCall(MaterialReset(*mat));
+  PetscCall(PetscFree(*mat));
+  PetscFunctionReturn(0);
 }
