@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "meshgen.h"
+#include "element_hex8.h"
 
 /* Bulge of the core's outer edges towards the rim (O-grid of the blank). In core coordinates
    (u,v) in [0,1]^2 a core vertex sits at x = a u (1 + B (1 - v^2)), y = a v (1 + B (1 - u^2)):
@@ -18,35 +19,9 @@
 /* ------------------------------------------------------------------------------------------ */
 /* hex8 geometry                                                                               */
 /* ------------------------------------------------------------------------------------------ */
-static const PetscReal HexRef[8][3] = {
-  {-1, -1, -1},
-  {1,  -1, -1},
-  {1,  1,  -1},
-  {-1, 1,  -1},
-  {-1, -1, 1 },
-  {1,  -1, 1 },
-  {1,  1,  1 },
-  {-1, 1,  1 }
-};
-
-/* determinant of dX/dxi of the trilinear hex with corner coordinates xe at reference point xi */
-static PetscErrorCode HexDetJ(PetscReal xe[8][3], const PetscReal xi[3], PetscReal *det)
-{
-  PetscReal J[3][3] = {{0}};
-
-  PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < 8; a++) {
-    const PetscReal f0 = 1 + HexRef[a][0] * xi[0], f1 = 1 + HexRef[a][1] * xi[1], f2 = 1 + HexRef[a][2] * xi[2];
-    const PetscReal dN[3] = {0.125 * HexRef[a][0] * f1 * f2, 0.125 * f0 * HexRef[a][1] * f2, 0.125 * f0 * f1 * HexRef[a][2]};
-    for (PetscInt i = 0; i < 3; i++)
-      for (PetscInt j = 0; j < 3; j++) J[i][j] += xe[a][i] * dN[j];
-  }
-  *det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-  PetscFunctionReturn(0);
-}
-
 /* ok = PETSC_TRUE when det J > 0 (relative to the cell size) at the 8 corners and the 8 Gauss
-   points of the hexahedron with vertices conn[0..7] in X */
+   points of the hexahedron with vertices conn[0..7] in X (the element's own check,
+   hex8_min_jacobian) */
 static PetscErrorCode HexIsValid(const PetscReal *X, const PetscInt *conn, PetscBool *ok)
 {
   static const PetscInt edges[12][2] = {
@@ -63,8 +38,8 @@ static PetscErrorCode HexIsValid(const PetscReal *X, const PetscInt *conn, Petsc
     {2, 6},
     {3, 7}
   };
-  const PetscReal g = 0.57735026918962576; /* 1/sqrt(3) */
-  PetscReal       xe[8][3], L = 0, tol;
+  double    xe[8][3];
+  PetscReal L = 0, tol;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < 8; a++)
@@ -75,14 +50,7 @@ static PetscErrorCode HexIsValid(const PetscReal *X, const PetscInt *conn, Petsc
     L = PetscMax(L, PetscSqrtReal(d2));
   }
   tol = 1e-10 * (0.5 * L) * (0.5 * L) * (0.5 * L); /* det J of a cube of side L is (L/2)^3 */
-  *ok = (L > 0 && !PetscIsInfOrNanReal(L)) ? PETSC_TRUE : PETSC_FALSE;
-  for (PetscInt a = 0; a < 8 && *ok; a++) {
-    PetscReal det, xg[3] = {g * HexRef[a][0], g * HexRef[a][1], g * HexRef[a][2]};
-    PetscCall(HexDetJ(xe, HexRef[a], &det));
-    if (!(det > tol)) *ok = PETSC_FALSE;
-    PetscCall(HexDetJ(xe, xg, &det));
-    if (!(det > tol)) *ok = PETSC_FALSE;
-  }
+  *ok = (L > 0 && !PetscIsInfOrNanReal(L) && hex8_min_jacobian((const double(*)[3])xe) > tol) ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
