@@ -1,49 +1,71 @@
-/* Frictional contact of slave nodes with rigid tools: penalty normal force, Coulomb friction
-   integrated by return mapping (eqs 14-18 of the method), its consistent tangent (eq 23), nodal
-   forces (eq 25) and the local tangent frame recurrence (eqs 28-30).
+/* Contact of the body's nodes with rigid tools, as an object that owns its state: the tools
+   (replicated on every rank), the slave nodes (the owned vertices of the contact sets), their
+   committed and trial states (status, tangential pressure, the frame t1 of eqs 28-30, pairing),
+   the frame seeds of the current Newton iteration and the pairing memo. Each rank handles only
+   the slave vertices it owns, so no contact force is counted twice.
 
-   Conventions (doc/contact.md):
-   * n is the unit normal of the tool surface at the closest point, pointing out of the tool;
-     g = (y - x).n is the gap, negative when the node has penetrated the tool.
-   * t_N = K_N max(0, -g) >= 0 (compression positive).
-   * The slip increment of the step is the node's displacement relative to the tool,
-     ds = (y - y_n) - (d - d_n), measured in the current tangent plane: dg_a = t_a . ds.
-   * The tangential "pressure" t_T (local components on t1, t2) is the elastic predictor
-     t_T^e = t_T^n + K_T dg_T, returned radially to the cone |t_T| <= mu t_N.
-   * The force on the node is f = t_N n - t_Ta t_a (friction opposes the slip); the residual
-     R = f_int - f_ext receives -f. */
+   Lifecycle: Create, SetFromOptions (before the mesh: the tools, the law, the sets), SetUp (on
+   the distributed mesh), then per step Seed (from the committed frames), per Newton iteration
+   Seed (eq 30 at the iterate) and RecordActive, per evaluation Assemble (trial state only), and
+   Commit when the step has converged. Kernels: contact_law.h; tools: tool.h. */
 #ifndef ATRITO_CONTACT_H
 #define ATRITO_CONTACT_H
+#include <petscmat.h>
+#include "mesh.h"
 
+typedef struct _p_Contact *Contact;
+
+/* what contact.csv reports per tool and step, from the committed state (all ranks) */
 typedef struct {
-  double KN, KT, mu;
-} ContactLaw;
+  const char *name;
+  double shift[3];   /* the tool's displacement                                                  */
+  double dir[3];     /* the direction of force and travel: the motion at load 1 (+z if fixed)    */
+  double travel;     /* shift . dir                                                              */
+  double path;       /* path length travelled along the tool's path                              */
+  double f[3];       /* resultant of the forces the tool exerts on the body (modelled part)      */
+  double force;      /* f . dir                                                                  */
+  double fn, ft;     /* magnitudes of the normal and tangential (friction) resultants            */
+  PetscInt active;   /* nodes pressed against the tool (normal force > 0)                        */
+  PetscInt stick, slip; /* of those, sticking and slipping (frictional contact only)             */
+  double max_pen;    /* largest penetration                                                      */
+} ContactToolResult;
 
-#define CONTACT_OPEN  0
-#define CONTACT_STICK 1
-#define CONTACT_SLIP  2
+PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c);
+/* -contact_* options and the tools (-tool_names, -tool_<name>_*) */
+PetscErrorCode ContactSetFromOptions(Contact c);
+/* the sets whose nodes need a tributary area (-contact_penalty_per_area), else n = 0 */
+PetscErrorCode ContactGetAreaSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN]);
+PetscErrorCode ContactSetUp(Contact c, const Mesh *m);
+PetscErrorCode ContactDestroy(Contact *c);
+PetscInt       ContactNumTools(Contact c);
+/* owned slave nodes on this rank */
+PetscInt       ContactNumSlaves(Contact c);
 
-/* Local frame (eqs 28-30): t2 = n x s / |n x s|, t1 = t2 x n, with s the seed (the chord at
-   first contact, the t1 of the previous iteration afterwards). Returns 0, or 1 when s is
-   (numerically) parallel to n. */
-int ContactFrame(const double n[3], const double s[3], double t1[3], double t2[3]);
+/* frame seeds: from the committed frames (start of a step or a retry) or by eq 30 from the frames
+   at the local displacements u (with boundary values; start of a Newton iteration) */
+PetscErrorCode ContactSeed(Contact c, const PetscScalar *u, PetscReal lambda, PetscBool from_committed);
+/* contributions at u: residual into f (local, may be NULL), tangent into J (MatSetValues) or into
+   coo_v (coordinate assembly, in the order of ContactGetCOO); *nfail: failed projections */
+PetscErrorCode ContactAssemble(Contact c, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v, PetscInt *nfail);
+/* coordinate assembly: the (i, j) of the contact blocks; with ci = cj = NULL only the count */
+PetscErrorCode ContactGetCOO(Contact c, PetscCount *n, PetscInt *ci, PetscInt *cj);
+/* the trial states of the last evaluation become the committed ones, at load lambda */
+PetscErrorCode ContactCommit(Contact c, PetscReal lambda);
+/* the contact status and normal force of every slave node at the current iterate */
+PetscErrorCode ContactRecordActive(Contact c);
+/* nodes that entered or left contact in the last Newton iteration with a significant normal
+   force (before or after); count over all ranks and the smallest node id */
+PetscErrorCode ContactChatter(Contact c, PetscInt *count, PetscInt *node);
+PetscErrorCode ContactGetToolResult(Contact c, PetscInt tool, PetscReal lambda, ContactToolResult *r);
+/* multiplicity of the model (force_full = force * symmetry) */
+PetscReal      ContactSymmetry(Contact c);
 
-/* Return map of the tangential pressure (eqs 14-18). Inputs: committed local components tTn,
-   local slip increment dg, normal pressure tN >= 0. Output tT, and the status (stick/slip).
-   When Y is not NULL, the consistent tangent d tT / d(dg_1, dg_2, penetration) (2x3, row-major),
-   i.e. the first two rows of eq 23 (the third row is (0, 0, K_N)). */
-int ContactReturnMap(const ContactLaw *law, const double tTn[2], const double dg[2], double tN, double tT[2], double *Y);
-
-/* Everything a node contributes at the current iterate.
-   In:  law; gap g; normal n; dn = d n / d y (3x3, row-major; NULL for a flat tool); frame seed s;
-        committed tangential pressure tTn (zero if the node was not in contact); slip increment ds.
-   Out: residual contribution R[3] (= -f), tangent K = dR/dy (3x3, may be NULL), the frame t1,
-        the pressures tN and tT[2], and the status. An open node (g > 0) contributes nothing; a touching
-   node (g = 0) is active with zero force and full stiffness. */
-int ContactNodeEval(const ContactLaw *law, double g, const double n[3], const double *dn, const double s[3], const double tTn[2], const double ds[3], double R[3], double *K, double t1[3], double *tN, double tT[2]);
-
-/* Tributary areas of the corners of a 4-node face (corners in cyclic order): a_i = integral over
-   the bilinear face of N_i dA (2x2 Gauss; exact for a plane face). They sum to the face area. */
-void ContactQuadAreas(const double x[4][3], double a[4]);
-
+/* node fields of the committed state on the owned vertices (rows as the mesh's vloc): gap, normal
+   force, tangential force (3), status, accumulated slip */
+PetscErrorCode ContactGetNodeFields(Contact c, PetscReal *gap, PetscReal *fn, PetscReal *ft, PetscReal *status, PetscReal *slip);
+/* checkpoint: the committed state of the slave nodes as rows of the owned vertices (width
+   ContactCheckpointWidth(); zero rows for the other vertices) and back */
+PetscInt       ContactCheckpointWidth(void);
+PetscErrorCode ContactCheckpointPack(Contact c, PetscReal *rows);
+PetscErrorCode ContactCheckpointUnpack(Contact c, const PetscReal *rows, PetscReal lambda, const char *path);
 #endif

@@ -2,10 +2,18 @@
    mpiexec -n N bin/atrito -options_file cases/X.opts [-option value ...] */
 #include <stdio.h>
 #include <string.h>
-#include "atrito.h"
+#include "mesh.h"
+#include "bc.h"
+#include "contact.h"
+#include "material.h"
+#include "element.h"
+#include "problem.h"
+#include "stepper.h"
+#include "results.h"
+#include "options.h"
 
 static const char help[] = "atrito: parallel finite-strain elasto-plastic solver with frictional contact.\n"
-                           "Run with -options_file cases/<case>.opts; -help lists the options.\n";
+                           "usage: mpiexec -n N bin/atrito -options_file cases/<case>.opts [-option value ...]\n";
 
 /* One line per error: the message of the error where it was raised, printed once (by rank 0 of
    the communicator it was raised on). -atrito_traceback keeps PETSc's full traceback instead. */
@@ -25,32 +33,75 @@ static PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *f
   return n;
 }
 
-static PetscErrorCode Run(void)
+/* Every module reads its options first (so that -help lists them all and a misspelt one stops
+   the run before any work), then the mesh, the conditions, contact and the problem are set up,
+   and the stepper runs. */
+static PetscErrorCode Run(PetscBool *stop)
 {
-  Case    cs;
-  Problem pb;
+  MPI_Comm      comm = PETSC_COMM_WORLD;
+  MeshOptions   mo;
+  Mesh          mesh;
+  BCs           bcs;
+  Contact       contact;
+  Material      material;
+  Element       element;
+  Problem       pb;
+  Stepper       st;
+  Results       res;
+  PetscBool     help;
+  PetscLogStage stage_mesh, stage_setup, stage_solve;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(&pb, sizeof(pb)));
-  pb.comm = PETSC_COMM_WORLD;
-  PetscCallMPI(MPI_Comm_rank(pb.comm, &pb.rank));
-  PetscCallMPI(MPI_Comm_size(pb.comm, &pb.size));
-  PetscLogStage stage_mesh, stage_setup, stage_solve;
+  *stop = PETSC_FALSE;
+  PetscCall(PetscMemzero(&mesh, sizeof(mesh)));
   PetscCall(PetscLogStageRegister("Mesh", &stage_mesh));
   PetscCall(PetscLogStageRegister("Setup", &stage_setup));
   PetscCall(PetscLogStageRegister("Solve", &stage_solve));
-  PetscCall(CaseRead(pb.comm, &cs));
-  pb.cs = &cs;
-  PetscCall(PetscLogStagePush(stage_mesh));
-  PetscCall(ProblemCreateMesh(&pb));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(stage_setup));
-  PetscCall(ProblemSetUp(&pb));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(stage_solve));
-  PetscCall(ProblemSolve(&pb));
-  PetscCall(PetscLogStagePop());
+  PetscCall(MeshSetFromOptions(comm, &mo));
+  PetscCall(MaterialCreate(comm, &material));
+  PetscCall(MaterialSetFromOptions(material));
+  PetscCall(ElementCreate(comm, &element));
+  PetscCall(ElementSetFromOptions(element));
+  PetscCall(BCSetFromOptions(comm, &bcs));
+  PetscCall(ContactCreate(comm, &contact));
+  PetscCall(ContactSetFromOptions(contact));
+  PetscCall(StepperSetFromOptions(comm, &st));
+  PetscCall(ResultsSetFromOptions(comm, &res));
+  PetscCall(ProblemSetFromOptions(comm, &pb));
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (help) { /* the options are listed: nothing to run */
+    *stop = PETSC_TRUE;
+  } else {
+    PetscCheck(mo.given, comm, PETSC_ERR_USER_INPUT, "no mesh: give a case (-options_file cases/<case>.opts) or -mesh_type / -mesh_file; usage: mpiexec -n N bin/atrito -options_file cases/<case>.opts [-option value ...]; -help lists the options");
+    PetscCall(AtritoOptionsCheckUnknown(comm));
+
+    PetscCall(PetscLogStagePush(stage_mesh));
+    {
+      PetscInt  na, *cmask;
+      char    (*sets)[ATRITO_NAME_LEN];
+      PetscCall(ContactGetAreaSets(contact, &na, &sets));
+      PetscCall(MeshSetAreaSets(&mesh, na, sets));
+      PetscCall(MeshCreate(comm, &mo, &mesh));
+      PetscCall(BCComputeMask(&bcs, &mesh, &cmask));
+      PetscCall(MeshSetConstraints(&mesh, cmask));
+      PetscCall(PetscFree(cmask));
+      PetscCall(BCSetUp(&bcs, &mesh));
+    }
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscLogStagePush(stage_setup));
+    PetscCall(ContactSetUp(contact, &mesh));
+    PetscCall(ProblemSetUp(&pb, &mesh, &bcs, contact, material, element));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscLogStagePush(stage_solve));
+    PetscCall(StepperRun(&st, &pb, &res));
+    PetscCall(PetscLogStagePop());
+    PetscCall(BCDestroy(&bcs));
+    PetscCall(MeshDestroy(&mesh));
+  }
   PetscCall(ProblemDestroy(&pb));
+  PetscCall(ContactDestroy(&contact));
+  PetscCall(ElementDestroy(&element));
+  PetscCall(MaterialDestroy(&material));
   PetscFunctionReturn(0);
 }
 
@@ -86,8 +137,9 @@ int main(int argc, char **argv)
   if (ierr) return 1;
   PetscOptionsGetBool(NULL, NULL, "-atrito_traceback", &traceback, NULL);
   if (!traceback) PetscPushErrorHandler(OneLineErrorHandler, NULL);
-  ierr = Run();
-  if (!ierr) ierr = ReportUnusedOptions();
+  PetscBool stop = PETSC_FALSE;
+  ierr = Run(&stop);
+  if (!ierr && !stop) ierr = ReportUnusedOptions();
   if (!traceback) PetscPopErrorHandler();
   PetscFinalize();
   return ierr ? 1 : 0;

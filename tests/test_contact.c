@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "testutil.h"
-#include "contact.h"
+#include "contact_law.h"
 
 static double urand(void) { return 2.0 * rand() / (double)RAND_MAX - 1.0; }
 static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }

@@ -1,15 +1,71 @@
-/* Contact at the problem level: the slave nodes (owned vertices of a labelled set), pairing with
-   the rigid tools (replicated on every rank, bounding-box prefilter), the per-node committed and
-   trial states, the seeds of the frame recurrence, the assembly of the nodal forces and their
-   tangents, and the per-tool history. Each rank handles only the slave vertices it owns, so no
-   contact force is counted twice. */
+/* The contact object (contact.h): the slave nodes (owned vertices of the contact sets), pairing
+   with the rigid tools (replicated on every rank, bounding-box prefilter), the per-node committed
+   and trial states, the seeds of the frame recurrence, the assembly of the nodal forces and their
+   tangents, the per-tool results, and the node rows of the checkpoint. Each rank handles only the
+   slave vertices it owns, so no contact force is counted twice. */
 #include <math.h>
 #include <string.h>
-#include "atrito.h"
+#include "contact.h"
+#include "contact_law.h"
+#include "tool.h"
+#include "util.h"
+#include "options.h"
+
+/* The last pairing of a slave node: the tool and projection found for the position y at the load
+   lambda. Pairing the node again at the same y and lambda (bit for bit) returns it unchanged: the
+   residual, the Jacobian and the frame update of a Newton iteration see one node position. */
+typedef struct {
+  PetscReal  y[3], lambda;
+  PetscInt   tool; /* -1: no tool within the search distance; -2: empty */
+  Projection pr;
+} PairMemo;
+
+typedef struct {
+  PetscInt  status;     /* CONTACT_OPEN / STICK / SLIP                                   */
+  PetscInt  tool, patch;/* pairing: tool and patch of the closest point, -1 when none      */
+  PetscReal xi, eta;    /* its parameters                                                 */
+  PetscReal tT[2];      /* tangential pressure, components on t1, t2                      */
+  PetscReal t1[3];      /* the local frame's t1 (eqs 28-30)                               */
+  PetscBool has_frame;
+  PetscReal y[3];       /* node position                                                   */
+  PetscReal gap, tN;    /* gap and normal pressure                                         */
+  PetscReal f[3];       /* contact force on the node                                       */
+  PetscReal fT[3];      /* its tangential (friction) part                                  */
+  PetscReal slip;       /* accumulated tangential slip                                     */
+} ContactState;
+
+struct _p_Contact {
+  MPI_Comm    comm;
+  PetscMPIInt rank;
+  const Mesh *mesh;
+  /* options */
+  char       set[8][ATRITO_NAME_LEN]; /* slave nodes: the union of these sets                */
+  PetscInt   nset;
+  ContactLaw law;
+  PetscBool  per_area;     /* K_N, K_T per unit area, times each node's tributary area        */
+  PetscBool  fd;           /* per-node finite-difference tangent instead of the analytic one  */
+  PetscReal  search_opt;   /* pairing: skip a tool whose box is farther than this (<= 0: auto) */
+  PetscReal  symmetry;     /* multiplicity of the model (0: from the mesh)                    */
+  /* tools, owned slave vertices and their states */
+  PetscInt      ntools;
+  Tool         *tools;
+  PetscInt      ns;            /* owned slave vertices                                       */
+  PetscInt     *slave;         /* their local vertex indices                                 */
+  PetscInt     *sgdof;         /* ns*3 global dofs, -1 where constrained                    */
+  ContactState *cst_c, *cst_t; /* committed and trial                                        */
+  PetscReal    *seed;          /* ns*3 frame seed of the current Newton iteration (eqs 28-30) */
+  PetscBool    *has_seed;
+  PetscReal     lambda_c;      /* load parameter of the committed state                      */
+  PetscReal     search;        /* pairing distance                                           */
+  PetscBool    *active_prev;   /* ns: in contact at the start of the current Newton iteration */
+  PetscReal    *tN_prev;       /* ns: and its normal force then                              */
+  PairMemo     *pmemo;         /* ns: the last pairing of each node                          */
+  PetscLogEvent ev_contact, ev_pairing;
+};
 
 /* The tool whose closest point to y has the smallest gap (bounding boxes first). Returns the tool
    index or -1 when no tool is within the search distance. */
-static PetscInt Pair(const Problem *pb, const double y[3], PetscReal lambda, Projection *best)
+static PetscInt Pair(const struct _p_Contact *pb, const double y[3], PetscReal lambda, Projection *best)
 {
   PetscInt tbest = -1;
   for (PetscInt t = 0; t < pb->ntools; t++) {
@@ -33,7 +89,7 @@ static PetscInt Pair(const Problem *pb, const double y[3], PetscReal lambda, Pro
 }
 
 /* Pair for slave node i, through its memo (the same y and lambda give the same result) */
-static PetscInt PairNode(const Problem *pb, PetscInt i, const double y[3], PetscReal lambda, Projection *pr)
+static PetscInt PairNode(const struct _p_Contact *pb, PetscInt i, const double y[3], PetscReal lambda, Projection *pr)
 {
   PairMemo *m = &pb->pmemo[i];
   if (m->tool != -2 && m->lambda == lambda && m->y[0] == y[0] && m->y[1] == y[1] && m->y[2] == y[2]) {
@@ -48,7 +104,7 @@ static PetscInt PairNode(const Problem *pb, PetscInt i, const double y[3], Petsc
 }
 
 /* chord of eq 28: from the projection to the point at (xi + 0.01, eta) of the same patch */
-static void Chord(const Problem *pb, PetscInt tool, const Projection *pr, double chord[3])
+static void Chord(const struct _p_Contact *pb, PetscInt tool, const Projection *pr, double chord[3])
 {
   const Patch *p = &pb->tools[tool].patch[pr->patch];
   double       x0[3], x1[3], xu[3], xv[3];
@@ -57,24 +113,93 @@ static void Chord(const Problem *pb, PetscInt tool, const Projection *pr, double
   for (int k = 0; k < 3; k++) chord[k] = x1[k] - x0[k];
 }
 
-static void NodePosition(const Problem *pb, PetscInt i, const PetscScalar *u, double y[3])
+static void NodePosition(const struct _p_Contact *pb, PetscInt i, const PetscScalar *u, double y[3])
 {
   const PetscInt v = pb->slave[i];
-  for (int k = 0; k < 3; k++) y[k] = pb->X[3 * v + k] + PetscRealPart(u[pb->vloff[v] + k]);
+  for (int k = 0; k < 3; k++) y[k] = pb->mesh->X[3 * v + k] + PetscRealPart(u[pb->mesh->vloff[v] + k]);
 }
 
-PetscErrorCode ContactSetUp(Problem *pb)
+PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c)
 {
-  const Case  *cs = pb->cs;
-  PetscBool   *mark, found;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(c));
+  (*c)->comm = comm;
+  PetscCallMPI(MPI_Comm_rank(comm, &(*c)->rank));
+  PetscCall(PetscLogEventRegister("AtritoContact", DM_CLASSID, &(*c)->ev_contact));
+  PetscCall(PetscLogEventRegister("AtritoPairing", DM_CLASSID, &(*c)->ev_pairing));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSetFromOptions(Contact c)
+{
+  MPI_Comm comm = c->comm;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventRegister("AtritoContact", DM_CLASSID, &pb->ev_contact));
-  PetscCall(PetscLogEventRegister("AtritoPairing", DM_CLASSID, &pb->ev_pairing));
-  PetscCall(ToolsCreateFromOptions(pb->comm, &pb->ntools, &pb->tools));
+  c->law.KN       = 1e5;
+  c->law.KT       = 5e3;
+  c->law.mu       = 0;
+  c->search_opt   = -1;
+  c->symmetry     = 0;
+  PetscOptionsBegin(comm, NULL, "Contact with rigid tools", NULL);
+  {
+    char     *sets[8];
+    PetscInt  nsets = 8;
+    PetscBool sset;
+    PetscCall(PetscOptionsStringArray("-contact_set", "Mesh sets of the slave nodes (their union)", NULL, sets, &nsets, &sset));
+    if (!sset || nsets == 0) {
+      PetscCall(PetscStrncpy(c->set[0], "contact", sizeof(c->set[0])));
+      c->nset = 1;
+    } else {
+      for (PetscInt k = 0; k < nsets; k++) {
+        PetscCall(PetscStrncpy(c->set[k], sets[k], sizeof(c->set[k])));
+        PetscCall(PetscFree(sets[k]));
+      }
+      c->nset = nsets;
+    }
+  }
+  PetscCall(PetscOptionsReal("-contact_penalty_normal", "Normal penalty K_N (force per length, per node; per unit area with -contact_penalty_per_area)", NULL, c->law.KN, &c->law.KN, NULL));
+  PetscCall(PetscOptionsReal("-contact_penalty_tangential", "Tangential penalty K_T (force per length, per node; per unit area with -contact_penalty_per_area)", NULL, c->law.KT, &c->law.KT, NULL));
+  PetscCall(PetscOptionsBool("-contact_penalty_per_area", "K_N and K_T are per unit area (force per length^3); each slave node's are scaled by its tributary area on the contact faces", NULL, c->per_area, &c->per_area, NULL));
+  PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient mu", NULL, c->law.mu, &c->law.mu, NULL));
+  PetscCheck(c->law.KN > 0 && PetscIsNormalReal(c->law.KN), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal %g must be positive", (double)c->law.KN);
+  PetscCheck(c->law.KT > 0 && PetscIsNormalReal(c->law.KT), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_tangential %g must be positive", (double)c->law.KT);
+  PetscCheck(c->law.mu >= 0 && (c->law.mu == 0 || PetscIsNormalReal(c->law.mu)), comm, PETSC_ERR_USER_INPUT, "-contact_friction %g must be >= 0", (double)c->law.mu);
+  {
+    const char *tang[] = {"analytic", "fd", "ContactTangent", "CT_", NULL};
+    PetscInt    t      = 0;
+    PetscCall(PetscOptionsEList("-contact_tangent", "Contact tangent: analytic (with curvature) or per-node finite differences", NULL, tang, 2, tang[0], &t, NULL));
+    c->fd = t == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
+  PetscCall(PetscOptionsReal("-contact_search_distance", "Pairing: tools farther than this from a node are skipped (default: 5% of the largest tool box)", NULL, c->search_opt, &c->search_opt, NULL));
+  PetscCall(PetscOptionsReal("-model_symmetry", "Multiplicity of the model: force_full = force * multiplicity (default 4 for the quarter blank, else 1)", NULL, c->symmetry, &c->symmetry, NULL));
+  PetscCheck(c->symmetry == 0 || c->symmetry >= 1, comm, PETSC_ERR_USER_INPUT, "-model_symmetry %g must be >= 1", (double)c->symmetry);
+  PetscOptionsEnd();
+  PetscCall(ToolsCreateFromOptions(comm, &c->ntools, &c->tools));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactGetAreaSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN])
+{
+  PetscFunctionBeginUser;
+  *n    = (c->ntools && c->per_area) ? c->nset : 0;
+  *sets = c->set;
+  PetscFunctionReturn(0);
+}
+
+PetscInt ContactNumTools(Contact c) { return c->ntools; }
+PetscInt ContactNumSlaves(Contact c) { return c->ns; }
+PetscReal ContactSymmetry(Contact c) { return c->symmetry; }
+
+PetscErrorCode ContactSetUp(Contact pb, const Mesh *m)
+{
+  PetscBool *mark, found;
+
+  PetscFunctionBeginUser;
+  pb->mesh = m;
+  if (pb->symmetry == 0) pb->symmetry = (m->opt.source == MESH_BLANK && m->opt.blank_quarter) ? 4 : 1;
   pb->ns = 0;
   if (!pb->ntools) PetscFunctionReturn(0);
-  pb->search = cs->contact_search;
+  pb->search = pb->search_opt;
   if (pb->search <= 0) { /* default: 5 % of the largest tool's box diagonal */
     for (PetscInt t = 0; t < pb->ntools; t++) {
       const double *b = pb->tools[t].bbox;
@@ -82,37 +207,38 @@ PetscErrorCode ContactSetUp(Problem *pb)
     }
   }
 
-  PetscCall(PetscCalloc1(pb->nv, &mark));
-  for (PetscInt s = 0; s < cs->ncontact_set; s++) {
-    PetscCall(ProblemMarkSetVertices(pb, cs->contact_set[s], mark, &found));
+  PetscCall(PetscCalloc1(m->nv, &mark));
+  for (PetscInt s = 0; s < pb->nset; s++) {
+    PetscCall(MeshMarkSetVertices(m, pb->set[s], mark, &found));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, pb->comm));
-    PetscCheck(found, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set: the mesh has no set named '%s'", cs->contact_set[s]);
+    PetscCheck(found, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set: the mesh has no set named '%s'", pb->set[s]);
   }
-  for (PetscInt v = 0; v < pb->nv; v++)
-    if (mark[v] && pb->vowned[v]) pb->ns++;
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (mark[v] && m->vowned[v]) pb->ns++;
   PetscCall(PetscMalloc4(pb->ns, &pb->slave, 3 * pb->ns, &pb->sgdof, 3 * pb->ns, &pb->seed, pb->ns, &pb->has_seed));
-  PetscCall(PetscCalloc1(pb->ns, &pb->active_prev));
+  PetscCall(PetscCalloc2(pb->ns, &pb->active_prev, pb->ns, &pb->tN_prev));
   PetscCall(PetscMalloc1(pb->ns, &pb->pmemo));
   PetscCall(PetscCalloc2(pb->ns, &pb->cst_c, pb->ns, &pb->cst_t));
   pb->ns = 0;
-  for (PetscInt v = 0; v < pb->nv; v++) {
-    if (!(mark[v] && pb->vowned[v])) continue;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    if (!(mark[v] && m->vowned[v])) continue;
     const PetscInt i = pb->ns++;
     pb->slave[i]     = v;
-    PetscCall(ProblemVertexDofs(pb, v, pb->sgdof + 3 * i));
+    PetscCall(MeshVertexDofs(m, v, pb->sgdof + 3 * i));
     pb->has_seed[i] = PETSC_FALSE;
-    for (int k = 0; k < 3; k++) pb->cst_c[i].y[k] = pb->X[3 * v + k];
+    for (int k = 0; k < 3; k++) pb->cst_c[i].y[k] = m->X[3 * v + k];
     pb->cst_c[i].tool = pb->cst_c[i].patch = -1;
     pb->cst_c[i].gap                       = PETSC_INFINITY;
     pb->cst_t[i]                           = pb->cst_c[i];
     pb->pmemo[i].tool                      = -2;
   }
   PetscCall(PetscFree(mark));
-  if (cs->contact_per_area) { /* the tributary areas come with the mesh (pb->varea) */
+  if (pb->per_area) { /* the tributary areas come with the mesh (MeshSetAreaSets) */
     PetscReal amin = PETSC_MAX_REAL, amax = 0, asum = 0;
     PetscInt  nzero = 0;
+    PetscCheck(m->varea, pb->comm, PETSC_ERR_PLIB, "-contact_penalty_per_area: the mesh carries no tributary areas");
     for (PetscInt i = 0; i < pb->ns; i++) {
-      const PetscReal A = pb->varea[pb->slave[i]];
+      const PetscReal A = m->varea[pb->slave[i]];
       if (!(A > 0)) nzero++;
       amin = PetscMin(amin, A);
       amax = PetscMax(amax, A);
@@ -122,39 +248,40 @@ PetscErrorCode ContactSetUp(Problem *pb)
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &amin, 1, MPIU_REAL, MPI_MIN, pb->comm));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &amax, 1, MPIU_REAL, MPI_MAX, pb->comm));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &asum, 1, MPIU_REAL, MPI_SUM, pb->comm));
-    PetscCheck(!nzero, pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, cs->contact_set[0], cs->ncontact_set > 1 ? ", ..." : "");
+    PetscCheck(!nzero, pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, pb->set[0], pb->nset > 1 ? ", ..." : "");
     PetscCall(PetscPrintf(pb->comm, "contact: penalties per unit area; tributary areas of the slave nodes: total %.10g, smallest %g, largest %g\n", (double)asum, (double)amin, (double)amax));
   }
   {
     PetscInt n = pb->ns;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, pb->comm));
-    PetscCall(PetscPrintf(pb->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, cs->contact_set[0], cs->ncontact_set > 1 ? ", ..." : "", pb->ntools, (double)cs->law.KN, (double)cs->law.KT, (double)cs->law.mu, cs->contact_fd ? "finite-difference" : "analytic"));
-    PetscCheck(n > 0, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set '%s' holds no vertex", cs->contact_set[0]);
+    PetscCall(PetscPrintf(pb->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, pb->set[0], pb->nset > 1 ? ", ..." : "", pb->ntools, (double)pb->law.KN, (double)pb->law.KT, (double)pb->law.mu, pb->fd ? "finite-difference" : "analytic"));
+    PetscCheck(n > 0, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set '%s' holds no vertex", pb->set[0]);
   }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactDestroy(Problem *pb)
+PetscErrorCode ContactDestroy(Contact *c)
 {
+  Contact pb = *c;
+
   PetscFunctionBeginUser;
-  if (pb->ntools) {
+  if (!pb) PetscFunctionReturn(0);
+  if (pb->ntools && pb->mesh) {
     PetscCall(PetscFree4(pb->slave, pb->sgdof, pb->seed, pb->has_seed));
-    PetscCall(PetscFree(pb->active_prev));
+    PetscCall(PetscFree2(pb->active_prev, pb->tN_prev));
     PetscCall(PetscFree(pb->pmemo));
     PetscCall(PetscFree2(pb->cst_c, pb->cst_t));
   }
   PetscCall(ToolsDestroy(pb->ntools, &pb->tools));
+  PetscCall(PetscFree(*c));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactSeed(Problem *pb, Vec Uloc, PetscReal lambda, PetscBool from_committed)
+PetscErrorCode ContactSeed(Contact pb, const PetscScalar *u, PetscReal lambda, PetscBool from_committed)
 {
-  const PetscScalar *u;
-
   PetscFunctionBeginUser;
   if (!pb->ns) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(pb->ev_pairing, 0, 0, 0, 0));
-  PetscCall(VecGetArrayRead(Uloc, &u));
   for (PetscInt i = 0; i < pb->ns; i++) {
     double     y[3], t2[3], t1[3];
     Projection pr;
@@ -183,19 +310,18 @@ PetscErrorCode ContactSeed(Problem *pb, Vec Uloc, PetscReal lambda, PetscBool fr
       pb->has_seed[i] = PETSC_TRUE;
     }
   }
-  PetscCall(VecRestoreArrayRead(Uloc, &u));
   PetscCall(PetscLogEventEnd(pb->ev_pairing, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* Contribution of slave node i at position y: residual R, tangent K (if asked), trial state */
-static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda, double R[3], double *K, ContactState *st)
+static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda, double R[3], double *K, ContactState *st)
 {
   const ContactState *cc = &pb->cst_c[i];
   Projection          pr;
   double              sh[3], shc[3], ds[3], tTn[2] = {0, 0}, dn[9], *dnp = NULL;
   PetscInt            tool;
-  ContactLaw          law = pb->cs->law;
+  ContactLaw          law = pb->law;
 
   memset(R, 0, 3 * sizeof(double));
   if (K) memset(K, 0, 9 * sizeof(double));
@@ -227,7 +353,7 @@ static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda
     tTn[0] = cc->tT[0];
     tTn[1] = cc->tT[1];
   }
-  if (K && !pb->cs->contact_fd) {
+  if (K && !pb->fd) {
     if (PatchNormalDerivative(&tl->patch[pr.patch], sh, y, &pr, dn)) {
       /* no closed form (Coons patch): the derivative of the normal by central differences */
       const double h = 1e-6 * (1.0 + fabs(y[0]) + fabs(y[1]) + fabs(y[2]));
@@ -242,11 +368,11 @@ static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda
     }
     dnp = dn;
   }
-  if (pb->varea) { /* penalties per unit area times the node's tributary area */
-    law.KN *= pb->varea[pb->slave[i]];
-    law.KT *= pb->varea[pb->slave[i]];
+  if (pb->per_area) { /* penalties per unit area times the node's tributary area */
+    law.KN *= pb->mesh->varea[pb->slave[i]];
+    law.KT *= pb->mesh->varea[pb->slave[i]];
   }
-  st->status    = ContactNodeEval(&law, pr.gap, pr.n, dnp, pb->seed + 3 * i, tTn, ds, R, pb->cs->contact_fd ? NULL : K, st->t1, &st->tN, st->tT);
+  st->status    = ContactNodeEval(&law, pr.gap, pr.n, dnp, pb->seed + 3 * i, tTn, ds, R, pb->fd ? NULL : K, st->t1, &st->tN, st->tT);
   st->has_frame = PETSC_TRUE;
   for (int k = 0; k < 3; k++) {
     st->f[k]  = -R[k];
@@ -258,7 +384,7 @@ static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda
     for (int k = 0; k < 3; k++) dt2 += (ds[k] - dsn * pr.n[k]) * (ds[k] - dsn * pr.n[k]);
     st->slip = cc->slip + sqrt(dt2);
   }
-  if (K && pb->cs->contact_fd) {
+  if (K && pb->fd) {
     /* per-node 3x3 finite-difference tangent: the contact block of a node depends on that node only */
     const double h = 1e-7 * (1.0 + fabs(y[0]) + fabs(y[1]) + fabs(y[2]));
     for (int j = 0; j < 3; j++) {
@@ -273,11 +399,12 @@ static int NodeEval(Problem *pb, PetscInt i, const double y[3], PetscReal lambda
   return 0;
 }
 
-PetscErrorCode ContactAssemble(Problem *pb, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v)
+PetscErrorCode ContactAssemble(Contact pb, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v, PetscInt *nfail_out)
 {
   PetscInt nfail = 0;
 
   PetscFunctionBeginUser;
+  *nfail_out = 0;
   if (!pb->ns) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(pb->ev_contact, 0, 0, 0, 0));
   /* pairing phase: every slave node to its tool and patch (kept in the node's memo) */
@@ -299,7 +426,7 @@ PetscErrorCode ContactAssemble(Problem *pb, const PetscScalar *u, PetscReal lamb
       if (!J) continue;
     }
     if (f)
-      for (int k = 0; k < 3; k++) f[pb->vloff[v] + k] += R[k];
+      for (int k = 0; k < 3; k++) f[pb->mesh->vloff[v] + k] += R[k];
     if (J) {
       if (coo_v) {
         PetscInt m = 0;
@@ -310,30 +437,71 @@ PetscErrorCode ContactAssemble(Problem *pb, const PetscScalar *u, PetscReal lamb
       } else PetscCall(MatSetValues(J, 3, pb->sgdof + 3 * i, 3, pb->sgdof + 3 * i, K, ADD_VALUES));
     }
   }
-  pb->contact_fail = nfail;
+  *nfail_out = nfail;
   PetscCall(PetscLogEventEnd(pb->ev_contact, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactCommit(Problem *pb)
+PetscErrorCode ContactGetCOO(Contact pb, PetscCount *n, PetscInt *ci, PetscInt *cj)
 {
+  PetscCount m = 0;
+
   PetscFunctionBeginUser;
-  if (pb->ns) PetscCall(PetscArraycpy(pb->cst_c, pb->cst_t, pb->ns));
+  for (PetscInt i = 0; i < pb->ns; i++)
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++)
+        if (pb->sgdof[3 * i + r] >= 0 && pb->sgdof[3 * i + c] >= 0) {
+          if (ci) {
+            ci[m] = pb->sgdof[3 * i + r];
+            cj[m] = pb->sgdof[3 * i + c];
+          }
+          m++;
+        }
+  *n = m;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactHistoryOpen(Problem *pb, FILE **fp, PetscBool append)
+PetscErrorCode ContactCommit(Contact pb, PetscReal lambda)
 {
-  char path[PETSC_MAX_PATH_LEN];
+  PetscFunctionBeginUser;
+  if (pb->ns) PetscCall(PetscArraycpy(pb->cst_c, pb->cst_t, pb->ns));
+  pb->lambda_c = lambda;
+  PetscFunctionReturn(0);
+}
+
+/* in contact with a force: the node presses on the tool (a touching node, g = 0, carries none) */
+static inline PetscBool Pressed(const ContactState *st) { return (st->status != CONTACT_OPEN && st->tN > 0) ? PETSC_TRUE : PETSC_FALSE; }
+
+/* Chattering: nodes whose contact status changed in the last Newton iteration although they carry
+   a significant normal force, before (a node leaving) or after (a node entering): more than 1e-3
+   of the largest normal force. Returns the count over all ranks and the smallest such node id. */
+PetscErrorCode ContactChatter(Contact pb, PetscInt *count, PetscInt *node)
+{
+  PetscReal tmax = 0;
+  PetscInt  c = 0, id = PETSC_MAX_INT;
 
   PetscFunctionBeginUser;
-  *fp = NULL;
-  if (pb->rank || !pb->ntools) PetscFunctionReturn(0);
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/contact.csv", pb->cs->output_dir));
-  *fp = fopen(path, append ? "a" : "w");
-  PetscCheck(*fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write '%s' (-output_dir)", path);
-  if (!append) fprintf(*fp, "step,time,tool,travel,force,force_full,newton_its,active,stick,slip,max_penetration\n");
-  fflush(*fp);
+  for (PetscInt i = 0; i < pb->ns; i++) tmax = PetscMax(tmax, PetscMax(pb->cst_t[i].tN, pb->tN_prev[i]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tmax, 1, MPIU_REAL, MPIU_MAX, pb->comm));
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    const PetscBool active = pb->cst_t[i].status != CONTACT_OPEN;
+    if (active != pb->active_prev[i] && PetscMax(pb->cst_t[i].tN, pb->tN_prev[i]) > 1e-3 * tmax) {
+      c++;
+      id = PetscMin(id, pb->mesh->node_id[pb->slave[i]]);
+    }
+  }
+  PetscCall(MPIU_Allreduce(&c, count, 1, MPIU_INT, MPI_SUM, pb->comm));
+  PetscCall(MPIU_Allreduce(&id, node, 1, MPIU_INT, MPI_MIN, pb->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactRecordActive(Contact pb)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    pb->active_prev[i] = pb->cst_t[i].status != CONTACT_OPEN;
+    pb->tN_prev[i]     = pb->cst_t[i].status != CONTACT_OPEN ? pb->cst_t[i].tN : 0;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -352,63 +520,122 @@ static void ToolDirection(const Tool *t, double m[3])
   }
 }
 
-PetscErrorCode ContactHistoryWrite(Problem *pb, FILE *fp, PetscInt step, PetscReal time, PetscInt its)
+PetscErrorCode ContactGetToolResult(Contact pb, PetscInt t, PetscReal lambda, ContactToolResult *r)
 {
-  PetscFunctionBeginUser;
-  for (PetscInt t = 0; t < pb->ntools; t++) {
-    double    m[3], sh[3], loc[5] = {0, 0, 0, 0, 0}, pen = 0; /* force, active, stick, slip */
-    PetscReal gl[5], gpen;
-    ToolDirection(&pb->tools[t], m);
-    ToolShift(&pb->tools[t], time, sh);
-    for (PetscInt i = 0; i < pb->ns; i++) {
-      const ContactState *st = &pb->cst_c[i];
-      if (st->tool != t || st->status == CONTACT_OPEN) continue;
-      loc[0] += st->f[0] * m[0] + st->f[1] * m[1] + st->f[2] * m[2];
-      loc[1] += 1;
-      loc[2] += st->status == CONTACT_STICK;
-      loc[3] += st->status == CONTACT_SLIP;
-      pen = PetscMax(pen, -st->gap);
-    }
-    PetscCall(MPIU_Allreduce(loc, gl, 4, MPIU_REAL, MPIU_SUM, pb->comm));
-    PetscCall(MPIU_Allreduce(&pen, &gpen, 1, MPIU_REAL, MPIU_MAX, pb->comm));
-    if (!pb->rank) {
-      char         line[1024];
-      const double travel = sh[0] * m[0] + sh[1] * m[1] + sh[2] * m[2];
-      const int    len    = snprintf(line, sizeof(line), "%" PetscInt_FMT ",%.12g,%s,%.12g,%.12e,%.12e,%" PetscInt_FMT ",%d,%d,%d,%.6e\n", step, (double)time, pb->tools[t].name, travel, (double)gl[0], (double)(gl[0] * pb->cs->symmetry), its, (int)gl[1], (int)gl[2], (int)gl[3], (double)gpen);
-      fwrite(line, 1, (size_t)len, fp);
-      fflush(fp);
-    }
-  }
-  PetscFunctionReturn(0);
-}
-
-/* Chattering: nodes whose contact status changed in the last Newton iteration although they carry
-   a significant force (more than 1e-3 of the largest normal force). Returns the count over all
-   ranks and the smallest such node id. */
-PetscErrorCode ContactChatter(Problem *pb, PetscInt *count, PetscInt *node)
-{
-  PetscReal tmax = 0;
-  PetscInt  c = 0, id = PETSC_MAX_INT;
+  const Tool *tl = &pb->tools[t];
+  /* sums: force along dir, f (3), normal resultant (3), tangential resultant (3), active, stick, slip */
+  double      loc[13] = {0}, pen = 0, gl[13], gpen;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < pb->ns; i++) tmax = PetscMax(tmax, pb->cst_t[i].tN);
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tmax, 1, MPIU_REAL, MPIU_MAX, pb->comm));
+  PetscCall(PetscMemzero(r, sizeof(*r)));
+  r->name = tl->name;
+  ToolDirection(tl, r->dir);
+  ToolShift(tl, lambda, r->shift);
+  r->travel = r->shift[0] * r->dir[0] + r->shift[1] * r->dir[1] + r->shift[2] * r->dir[2];
+  r->path   = ToolTravel(tl, lambda);
   for (PetscInt i = 0; i < pb->ns; i++) {
-    const PetscBool active = pb->cst_t[i].status != CONTACT_OPEN;
-    if (active != pb->active_prev[i] && pb->cst_t[i].tN > 1e-3 * tmax) {
-      c++;
-      id = PetscMin(id, pb->node_id[pb->slave[i]]);
+    const ContactState *st = &pb->cst_c[i];
+    if (st->tool != t || st->status == CONTACT_OPEN) continue;
+    loc[0] += st->f[0] * r->dir[0] + st->f[1] * r->dir[1] + st->f[2] * r->dir[2];
+    for (int k = 0; k < 3; k++) {
+      loc[1 + k] += st->f[k];
+      loc[4 + k] += st->f[k] - st->fT[k];
+      loc[7 + k] += st->fT[k];
     }
+    if (Pressed(st)) {
+      loc[10] += 1;
+      if (pb->law.mu > 0) {
+        loc[11] += st->status == CONTACT_STICK;
+        loc[12] += st->status == CONTACT_SLIP;
+      }
+    }
+    pen = PetscMax(pen, -st->gap);
   }
-  PetscCall(MPIU_Allreduce(&c, count, 1, MPIU_INT, MPI_SUM, pb->comm));
-  PetscCall(MPIU_Allreduce(&id, node, 1, MPIU_INT, MPI_MIN, pb->comm));
+  PetscCall(MPIU_Allreduce(loc, gl, 13, MPI_DOUBLE, MPI_SUM, pb->comm));
+  PetscCall(MPIU_Allreduce(&pen, &gpen, 1, MPI_DOUBLE, MPI_MAX, pb->comm));
+  r->force = gl[0];
+  for (int k = 0; k < 3; k++) r->f[k] = gl[1 + k];
+  r->fn      = sqrt(gl[4] * gl[4] + gl[5] * gl[5] + gl[6] * gl[6]);
+  r->ft      = sqrt(gl[7] * gl[7] + gl[8] * gl[8] + gl[9] * gl[9]);
+  r->active  = (PetscInt)gl[10];
+  r->stick   = (PetscInt)gl[11];
+  r->slip    = (PetscInt)gl[12];
+  r->max_pen = gpen;
   PetscFunctionReturn(0);
 }
 
-/* the contact status of every slave node at the current iterate (start of a Newton iteration) */
-PetscErrorCode ContactRecordActive(Problem *pb)
+PetscErrorCode ContactGetNodeFields(Contact pb, PetscReal *cg, PetscReal *cn, PetscReal *ct, PetscReal *cst, PetscReal *csl)
+{
+  const Mesh *m = pb->mesh;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(cn, m->nvo));
+  PetscCall(PetscArrayzero(ct, 3 * m->nvo));
+  PetscCall(PetscArrayzero(cst, m->nvo));
+  PetscCall(PetscArrayzero(csl, m->nvo));
+  for (PetscInt k = 0; k < m->nvo; k++) cg[k] = pb->search;
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    const ContactState *st = &pb->cst_c[i];
+    const PetscInt      r  = m->vrow[pb->slave[i]];
+    cg[r]                  = PetscIsInfReal(st->gap) ? pb->search : st->gap;
+    cn[r]                  = st->tN;
+    /* 0 open or touching without force, 1 stick, 2 slip, 3 pressed without friction */
+    cst[r] = !Pressed(st) ? 0 : (pb->law.mu > 0 ? st->status : 3);
+    csl[r] = st->slip;
+    for (int k = 0; k < 3; k++) ct[3 * r + k] = st->fT[k];
+  }
+  PetscFunctionReturn(0);
+}
+
+#define CKPT_NCS 24 /* doubles per vertex for the contact state */
+
+PetscInt ContactCheckpointWidth(void) { return CKPT_NCS; }
+
+PetscErrorCode ContactCheckpointPack(Contact pb, PetscReal *rows)
 {
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < pb->ns; i++) pb->active_prev[i] = pb->cst_t[i].status != CONTACT_OPEN;
+  PetscCall(PetscArrayzero(rows, CKPT_NCS * pb->mesh->nvo));
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    const ContactState *s = &pb->cst_c[i];
+    const PetscReal     v[CKPT_NCS] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip};
+    PetscCall(PetscArraycpy(rows + CKPT_NCS * pb->mesh->vrow[pb->slave[i]], v, CKPT_NCS));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactCheckpointUnpack(Contact pb, const PetscReal *rows, PetscReal lambda, const char *path)
+{
+  PetscInt bad = PETSC_MAX_INT;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    const PetscReal *d = rows + CKPT_NCS * pb->mesh->vrow[pb->slave[i]];
+    ContactState    *s = &pb->cst_c[i];
+    if (d[0] != 1) {
+      bad = PetscMin(bad, pb->mesh->node_id[pb->slave[i]]);
+      continue;
+    }
+    s->status    = (PetscInt)d[1];
+    s->tool      = (PetscInt)d[2];
+    s->patch     = (PetscInt)d[3];
+    s->xi        = d[4];
+    s->eta       = d[5];
+    s->tT[0]     = d[6];
+    s->tT[1]     = d[7];
+    s->has_frame = d[11] != 0 ? PETSC_TRUE : PETSC_FALSE;
+    for (int k = 0; k < 3; k++) {
+      s->t1[k] = d[8 + k];
+      s->y[k]  = d[12 + k];
+      s->f[k]  = d[17 + k];
+      s->fT[k] = d[20 + k];
+    }
+    s->gap  = d[15];
+    s->tN   = d[16];
+    s->slip = d[23];
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, pb->comm));
+  PetscCheck(bad == PETSC_MAX_INT, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: node id %" PetscInt_FMT " is a slave node here but not in the checkpoint", path, bad);
+  if (pb->ns) PetscCall(PetscArraycpy(pb->cst_t, pb->cst_c, pb->ns));
+  pb->lambda_c = lambda;
   PetscFunctionReturn(0);
 }

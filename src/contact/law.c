@@ -3,7 +3,7 @@
    derivative, curvature of the tool and rotation of the frame included. */
 #include <math.h>
 #include <string.h>
-#include "contact.h"
+#include "contact_law.h"
 
 static void cross(const double a[3], const double b[3], double c[3])
 {

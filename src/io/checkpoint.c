@@ -6,10 +6,9 @@
    previous checkpoint whole. */
 #include <stdio.h>
 #include <hdf5.h>
-#include "atrito.h"
+#include "results.h"
 
 #define CKPT_VERSION 1
-#define CKPT_NCS     24 /* doubles per vertex for the contact state */
 
 #define CheckH5(ret, ...) PetscCheck((ret) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, __VA_ARGS__)
 
@@ -82,7 +81,7 @@ static PetscErrorCode OwnedRows(hid_t file, const char *name, PetscBool write, I
 
 /* the 3 displacement components of every owned vertex <-> a global vector (constrained
    components are not in it: they come from the boundary values) */
-static PetscErrorCode VertexValues(Problem *pb, Vec U, PetscReal *own, PetscBool to_vec)
+static PetscErrorCode VertexValues(const Mesh *pb, Vec U, PetscReal *own, PetscBool to_vec)
 {
   PetscScalar *u;
   PetscInt     rstart;
@@ -92,7 +91,7 @@ static PetscErrorCode VertexValues(Problem *pb, Vec U, PetscReal *own, PetscBool
   PetscCall(VecGetArray(U, &u));
   for (PetscInt k = 0; k < pb->nvo; k++) {
     PetscInt idx[3];
-    PetscCall(ProblemVertexDofs(pb, pb->vloc[k], idx));
+    PetscCall(MeshVertexDofs(pb, pb->vloc[k], idx));
     for (PetscInt c = 0; c < 3; c++) {
       if (idx[c] < 0) {
         if (!to_vec) own[3 * k + c] = 0;
@@ -102,33 +101,6 @@ static PetscErrorCode VertexValues(Problem *pb, Vec U, PetscReal *own, PetscBool
   }
   PetscCall(VecRestoreArray(U, &u));
   PetscFunctionReturn(0);
-}
-
-static void PackContact(const ContactState *s, PetscReal *d)
-{
-  PetscReal v[CKPT_NCS] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip};
-  for (int k = 0; k < CKPT_NCS; k++) d[k] = v[k];
-}
-
-static void UnpackContact(const PetscReal *d, ContactState *s)
-{
-  s->status    = (PetscInt)d[1];
-  s->tool      = (PetscInt)d[2];
-  s->patch     = (PetscInt)d[3];
-  s->xi        = d[4];
-  s->eta       = d[5];
-  s->tT[0]     = d[6];
-  s->tT[1]     = d[7];
-  s->has_frame = d[11] != 0 ? PETSC_TRUE : PETSC_FALSE;
-  for (int k = 0; k < 3; k++) {
-    s->t1[k] = d[8 + k];
-    s->y[k]  = d[12 + k];
-    s->f[k]  = d[17 + k];
-    s->fT[k] = d[20 + k];
-  }
-  s->gap  = d[15];
-  s->tN   = d[16];
-  s->slip = d[23];
 }
 
 static PetscErrorCode Attr(hid_t file, const char *name, PetscBool write, double *v, const char *path)
@@ -152,12 +124,14 @@ static PetscErrorCode Attr(hid_t file, const char *name, PetscBool write, double
 }
 
 /* the whole committed state, written (write) or read */
-static PetscErrorCode Transfer(Problem *pb, hid_t file, PetscBool write, CheckpointInfo *ci, const char *path)
+static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, CheckpointInfo *ci, const char *path)
 {
+  const Mesh *pb = problem->mesh;
+  const PetscInt ncs = ContactCheckpointWidth();
   PetscReal *own, *cst;
   double     a[10];
   const char *names[10] = {"format_version", "step", "lambda", "dl", "dl_prev", "total_its", "total_cuts", "vertices", "cells", "slave_nodes"};
-  PetscInt   nsg = pb->ns;
+  PetscInt   nsg = ContactNumSlaves(problem->contact);
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nsg, 1, MPIU_INT, MPI_SUM, pb->comm));
@@ -184,41 +158,34 @@ static PetscErrorCode Transfer(Problem *pb, hid_t file, PetscBool write, Checkpo
     ci->total_its  = (PetscInt)a[5];
     ci->total_cuts = (PetscInt)a[6];
   }
-  PetscCall(PetscMalloc2(3 * pb->nvo + 1, &own, CKPT_NCS * pb->nvo + 1, &cst));
+  PetscCall(PetscMalloc2(3 * pb->nvo + 1, &own, ncs * pb->nvo + 1, &cst));
   /* displacements of the last two converged steps */
-  if (write) PetscCall(VertexValues(pb, pb->Uc, own, PETSC_FALSE));
-  PetscCall(OwnedRows(file, "displacement", write, &pb->rv, 3, own, path));
-  if (!write) PetscCall(VertexValues(pb, pb->Uc, own, PETSC_TRUE));
-  if (write) PetscCall(VertexValues(pb, pb->Uprev, own, PETSC_FALSE));
-  PetscCall(OwnedRows(file, "displacement_previous", write, &pb->rv, 3, own, path));
-  if (!write) PetscCall(VertexValues(pb, pb->Uprev, own, PETSC_TRUE));
+  if (write) PetscCall(VertexValues(pb, problem->Uc, own, PETSC_FALSE));
+  PetscCall(OwnedRows(file, "displacement", write, (IORows *)&pb->rv, 3, own, path));
+  if (!write) PetscCall(VertexValues(pb, problem->Uc, own, PETSC_TRUE));
+  if (write) PetscCall(VertexValues(pb, problem->Uprev, own, PETSC_FALSE));
+  PetscCall(OwnedRows(file, "displacement_previous", write, (IORows *)&pb->rv, 3, own, path));
+  if (!write) PetscCall(VertexValues(pb, problem->Uprev, own, PETSC_TRUE));
   /* plastic history of every Gauss point */
-  PetscCall(OwnedRows(file, "plastic_history", write, &pb->rc, HEX8_NQP * MAT_NHIST, pb->hist_c, path));
+  PetscCall(OwnedRows(file, "plastic_history", write, (IORows *)&pb->rc, problem->nhc, problem->hist_c, path));
   /* contact state per vertex (zero rows for the vertices that are not slave nodes) */
-  if (pb->ntools) {
-    PetscCall(PetscArrayzero(cst, CKPT_NCS * pb->nvo));
-    if (write)
-      for (PetscInt i = 0; i < pb->ns; i++) PackContact(&pb->cst_c[i], cst + CKPT_NCS * pb->vrow[pb->slave[i]]);
-    PetscCall(OwnedRows(file, "contact_state", write, &pb->rv, CKPT_NCS, cst, path));
-    if (!write)
-      for (PetscInt i = 0; i < pb->ns; i++) {
-        const PetscReal *d = cst + CKPT_NCS * pb->vrow[pb->slave[i]];
-        PetscCheck(d[0] == 1, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: node id %" PetscInt_FMT " is a slave node here but not in the checkpoint", path, pb->node_id[pb->slave[i]]);
-        UnpackContact(d, &pb->cst_c[i]);
-      }
+  if (ContactNumTools(problem->contact)) {
+    if (write) PetscCall(ContactCheckpointPack(problem->contact, cst));
+    PetscCall(OwnedRows(file, "contact_state", write, (IORows *)&pb->rv, ncs, cst, path));
+    if (!write) PetscCall(ContactCheckpointUnpack(problem->contact, cst, ci->lambda, path));
   }
   PetscCall(PetscFree2(own, cst));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckpointWrite(Problem *pb, const CheckpointInfo *ci)
+PetscErrorCode CheckpointWrite(Results *res, Problem *pb, const CheckpointInfo *ci)
 {
   char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   hid_t file;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(pb->ev_output, 0, 0, 0, 0));
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/checkpoint.h5", pb->cs->output_dir));
+  PetscCall(PetscLogEventBegin(res->ev_output, 0, 0, 0, 0));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/checkpoint.h5", res->dir));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp", path));
   PetscCall(OpenFile(pb->comm, tmp, PETSC_TRUE, &file));
   PetscCall(Transfer(pb, file, PETSC_TRUE, (CheckpointInfo *)ci, tmp));
@@ -227,7 +194,7 @@ PetscErrorCode CheckpointWrite(Problem *pb, const CheckpointInfo *ci)
   PetscCallMPI(MPI_Barrier(pb->comm));
   if (!pb->rank) PetscCheck(!rename(tmp, path), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot rename '%s' to '%s'", tmp, path);
   PetscCallMPI(MPI_Barrier(pb->comm));
-  PetscCall(PetscLogEventEnd(pb->ev_output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(res->ev_output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -249,41 +216,7 @@ PetscErrorCode CheckpointRead(Problem *pb, const char *path, CheckpointInfo *ci)
   PetscCall(Transfer(pb, file, PETSC_FALSE, ci, path));
   H5Fclose(file);
   /* the trial states start from the committed ones */
-  PetscCall(PetscArraycpy(pb->hist_t, pb->hist_c, (size_t)pb->nc * HEX8_NQP * MAT_NHIST));
-  if (pb->ns) PetscCall(PetscArraycpy(pb->cst_t, pb->cst_c, pb->ns));
-  pb->lambda_c = ci->lambda;
+  PetscCall(ProblemRestored(pb));
   PetscFunctionReturn(0);
 }
 
-/* Restart: keep the header and the rows of steps <= step of a CSV history, rewritten atomically
-   (rank 0); returns whether the file existed. */
-PetscErrorCode HistoryTruncate(Problem *pb, const char *name, PetscInt step, PetscBool *existed)
-{
-  char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN], line[65536];
-  FILE *in, *out;
-  int   ex = 0;
-
-  PetscFunctionBeginUser;
-  if (!pb->rank) {
-    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", pb->cs->output_dir, name));
-    PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp", path));
-    in = fopen(path, "r");
-    if (in) {
-      ex  = 1;
-      out = fopen(tmp, "w");
-      PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write '%s'", tmp);
-      if (fgets(line, sizeof(line), in)) fputs(line, out); /* header */
-      while (fgets(line, sizeof(line), in)) {
-        size_t len = strlen(line);
-        if (len == 0 || line[len - 1] != '\n') break; /* a partial last row of a killed run */
-        if (atol(line) <= (long)step) fputs(line, out);
-      }
-      fclose(in);
-      fclose(out);
-      PetscCheck(!rename(tmp, path), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot rename '%s' to '%s'", tmp, path);
-    }
-  }
-  PetscCallMPI(MPI_Bcast(&ex, 1, MPI_INT, 0, pb->comm));
-  *existed = ex ? PETSC_TRUE : PETSC_FALSE;
-  PetscFunctionReturn(0);
-}

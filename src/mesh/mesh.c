@@ -4,8 +4,12 @@
 #include <string.h>
 #include <metis.h>
 #include <petscsf.h>
-#include "atrito.h"
+#include "mesh.h"
 #include "meshgen.h"
+#include "options.h"
+#include "element_hex8.h"
+#include "contact_law.h"
+#include "util.h"
 
 /* DMPlex lists a hexahedron's bottom face with its normal pointing into the cell; the standard
    order lists it counter-clockwise seen from above. The map is an involution: swap 1 and 3. */
@@ -28,11 +32,23 @@ static PetscErrorCode MeshDataReadGmsh(const char *file, MeshData *m)
   fclose(fp);
   PetscCall(PetscMemzero(m, sizeof(*m)));
   {
-    PetscBool has; /* physical names become the set names unless the user says otherwise */
+    /* physical names become the set names unless the user says otherwise: the reader runs on a
+       private copy of the options, so the user's database is not written */
+    PetscOptions opts;
+    PetscBool    has;
+    char        *all;
+    PetscCall(PetscOptionsCreate(&opts));
+    PetscCall(PetscOptionsGetAll(NULL, &all));
+    PetscCall(PetscOptionsInsertString(opts, all));
+    PetscCall(PetscFree(all));
     PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_use_regions", &has));
-    if (!has) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
+    if (!has) PetscCall(PetscOptionsSetValue(opts, "-dm_plex_gmsh_use_regions", "true"));
+    PetscCall(PetscOptionsPush(opts));
+    PetscErrorCode ierr = DMPlexCreateGmshFromFile(PETSC_COMM_SELF, file, PETSC_TRUE, &dm);
+    PetscCall(PetscOptionsPop());
+    PetscCall(PetscOptionsDestroy(&opts));
+    PetscCall(ierr);
   }
-  PetscCall(DMPlexCreateGmshFromFile(PETSC_COMM_SELF, file, PETSC_TRUE, &dm));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   m->ne = cEnd - cStart;
@@ -123,21 +139,21 @@ static PetscErrorCode MeshDataReadGmsh(const char *file, MeshData *m)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode MeshDataLoad(const Case *cs, MeshData *m)
+static PetscErrorCode MeshDataLoad(const MeshOptions *o, MeshData *m)
 {
   PetscFunctionBeginUser;
-  switch (cs->mesh_source) {
+  switch (o->source) {
   case MESH_BOX:
-    PetscCall(MeshDataCreateBox(cs->box_lower, cs->box_upper, cs->box_cells, m));
+    PetscCall(MeshDataCreateBox(o->box_lower, o->box_upper, o->box_cells, m));
     break;
   case MESH_BLANK:
-    PetscCall(MeshDataCreateBlank(cs->blank_radius, cs->blank_thickness, cs->blank_core, cs->blank_core_cells, cs->blank_radial_cells, cs->blank_layers, cs->blank_quarter, m));
+    PetscCall(MeshDataCreateBlank(o->blank_radius, o->blank_thickness, o->blank_core, o->blank_core_cells, o->blank_radial_cells, o->blank_layers, o->blank_quarter, m));
     break;
   case MESH_INP:
-    PetscCall(MeshDataReadInp(cs->mesh_file, m));
+    PetscCall(MeshDataReadInp(o->file, m));
     break;
   case MESH_GMSH:
-    PetscCall(MeshDataReadGmsh(cs->mesh_file, m));
+    PetscCall(MeshDataReadGmsh(o->file, m));
     break;
   }
   /* every cell must have a positive Jacobian at its Gauss points and corners */
@@ -180,7 +196,7 @@ static PetscErrorCode PartitionMetis(const MeshData *m, PetscMPIInt size, PetscI
 }
 
 /* Vertices of label `set` (any points: their closures), marked in mark[nv] */
-PetscErrorCode ProblemMarkSetVertices(Problem *pb, const char *set, PetscBool *mark, PetscBool *found)
+PetscErrorCode MeshMarkSetVertices(const Mesh *pb, const char *set, PetscBool *mark, PetscBool *found)
 {
   DMLabel  label;
   PetscInt pStart, pEnd;
@@ -204,46 +220,36 @@ PetscErrorCode ProblemMarkSetVertices(Problem *pb, const char *set, PetscBool *m
   PetscFunctionReturn(0);
 }
 
-/* Section with three displacement dofs per vertex and the Dirichlet constraints */
-static PetscErrorCode CreateSections(Problem *pb)
+/* Output rows: the owned vertices and the cells, in the source mesh's order (iorows.h) */
+static PetscErrorCode OutputRowsCreate(Mesh *pb)
 {
-  const Case  *cs = pb->cs;
+  PetscInt *src;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(pb->nv, &pb->vloc, pb->nv, &pb->vrow));
+  pb->nvo = 0;
+  for (PetscInt v = 0; v < pb->nv; v++) {
+    pb->vrow[v] = pb->vowned[v] ? pb->nvo : -1;
+    if (pb->vowned[v]) pb->vloc[pb->nvo++] = v;
+  }
+  PetscCall(PetscMalloc1(PetscMax(pb->nvo, pb->nc), &src));
+  for (PetscInt k = 0; k < pb->nvo; k++) src[k] = pb->node_src[pb->vloc[k]];
+  PetscCall(IORowsCreate(pb->comm, pb->nvo, src, &pb->rv));
+  PetscCall(IORowsCreate(pb->comm, pb->nc, pb->elem_src, &pb->rc));
+  PetscCall(PetscFree(src));
+  PetscCheck(pb->rv.N == pb->nv_global && pb->rc.N == pb->ne_global, pb->comm, PETSC_ERR_PLIB, "output rows: %" PetscInt_FMT " vertices and %" PetscInt_FMT " cells owned, the mesh has %" PetscInt_FMT " and %" PetscInt_FMT, pb->rv.N, pb->rc.N, pb->nv_global, pb->ne_global);
+  PetscFunctionReturn(0);
+}
+
+/* Section with three displacement dofs per vertex and the Dirichlet constraints (cmask from the
+   boundary conditions); the local offsets, ownership, element dof maps and the output rows */
+PetscErrorCode MeshSetConstraints(Mesh *pb, const PetscInt *cmask)
+{
   PetscSection s, sr;
   PetscInt     pStart, pEnd;
-  PetscInt    *cmask;     /* per vertex: bit c set when component c is constrained */
-  PetscInt    *owner;     /* per vertex and component: index of the BC that constrains it, -1 */
-  PetscBool   *mark;
-  PetscInt     conflict = -1, conflict_g;
 
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetChart(pb->dm, &pStart, &pEnd));
-  PetscCall(PetscCalloc2(pb->nv, &cmask, pb->nv, &mark));
-  PetscCall(PetscMalloc1(3 * pb->nv, &owner));
-  for (PetscInt i = 0; i < 3 * pb->nv; i++) owner[i] = -1;
-  for (PetscInt b = 0; b < cs->nbc; b++) {
-    PetscBool found;
-    PetscCall(PetscArrayzero(mark, pb->nv));
-    PetscCall(ProblemMarkSetVertices(pb, cs->bc[b].set, mark, &found));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, pb->comm));
-    PetscCheck(found, pb->comm, PETSC_ERR_USER_INPUT, "-bc_%s_set: the mesh has no set named '%s'", cs->bc[b].name, cs->bc[b].set);
-    for (PetscInt v = 0; v < pb->nv; v++) {
-      if (!mark[v]) continue;
-      for (PetscInt k = 0; k < cs->bc[b].ncomp; k++) {
-        const PetscInt c = cs->bc[b].comp[k], o = owner[3 * v + c];
-        if (o >= 0 && conflict < 0) {
-          /* the same component prescribed twice: allowed only when the values agree */
-          PetscInt ko = 0;
-          while (ko < cs->bc[o].ncomp && cs->bc[o].comp[ko] != c) ko++;
-          if (cs->bc[o].value[ko] != cs->bc[b].value[k]) conflict = b * ATRITO_MAX_BC + o;
-        }
-        owner[3 * v + c] = b;
-        cmask[v] |= 1 << c;
-      }
-    }
-  }
-  PetscCall(MPIU_Allreduce(&conflict, &conflict_g, 1, MPIU_INT, MPI_MAX, pb->comm));
-  PetscCheck(conflict_g < 0, pb->comm, PETSC_ERR_USER_INPUT, "boundary conditions '%s' and '%s' prescribe different values to the same displacement component", cs->bc[conflict_g / ATRITO_MAX_BC].name, cs->bc[conflict_g % ATRITO_MAX_BC].name);
-
   PetscCall(PetscSectionCreate(pb->comm, &s));
   PetscCall(PetscSectionSetNumFields(s, 1));
   PetscCall(PetscSectionSetFieldName(s, 0, "displacement"));
@@ -326,35 +332,9 @@ static PetscErrorCode CreateSections(Problem *pb)
       }
     }
   }
-  pb->nbc = cs->nbc;
-  for (PetscInt b = 0; b < cs->nbc; b++) {
-    BCData   *bd = &pb->bc[b];
-    PetscBool found;
-    PetscCall(PetscArrayzero(mark, pb->nv));
-    PetscCall(ProblemMarkSetVertices(pb, cs->bc[b].set, mark, &found));
-    bd->nset = bd->nown = 0;
-    for (PetscInt v = 0; v < pb->nv; v++)
-      if (mark[v]) {
-        for (PetscInt k = 0; k < cs->bc[b].ncomp; k++)
-          if (owner[3 * v + cs->bc[b].comp[k]] == b) bd->nset++;
-        if (pb->vowned[v]) bd->nown++;
-      }
-    PetscCall(PetscMalloc3(bd->nset, &bd->loff, bd->nset, &bd->val, bd->nown, &bd->own));
-    bd->nset = bd->nown = 0;
-    for (PetscInt v = 0; v < pb->nv; v++)
-      if (mark[v]) {
-        for (PetscInt k = 0; k < cs->bc[b].ncomp; k++)
-          if (owner[3 * v + cs->bc[b].comp[k]] == b) {
-            bd->loff[bd->nset] = pb->vloff[v] + cs->bc[b].comp[k];
-            bd->val[bd->nset++] = cs->bc[b].value[k];
-          }
-        if (pb->vowned[v]) bd->own[bd->nown++] = v;
-      }
-  }
   PetscCall(PetscSectionDestroy(&s));
   PetscCall(PetscSectionDestroy(&sr));
-  PetscCall(PetscFree2(cmask, mark));
-  PetscCall(PetscFree(owner));
+  PetscCall(OutputRowsCreate(pb));
   PetscFunctionReturn(0);
 }
 
@@ -374,7 +354,7 @@ static int FaceRecCmp(const void *a, const void *b)
   return 0;
 }
 
-static PetscErrorCode SerialContactAreas(const Case *cs, const MeshData *md, char (*names)[ATRITO_NAME_LEN], const PetscInt *is_cell, PetscInt nnames, PetscReal *area)
+static PetscErrorCode SerialContactAreas(const Mesh *mesh, const MeshData *md, char (*names)[ATRITO_NAME_LEN], const PetscInt *is_cell, PetscInt nnames, PetscReal *area)
 {
   static const int hexface[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
   PetscBool       *mark;
@@ -382,11 +362,11 @@ static PetscErrorCode SerialContactAreas(const Case *cs, const MeshData *md, cha
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(md->nv, &mark));
-  for (PetscInt s = 0; s < cs->ncontact_set; s++) {
+  for (PetscInt s = 0; s < mesh->narea_set; s++) {
     PetscInt set = -1, nf = 0;
     for (PetscInt i = 0; i < nnames && set < 0; i++) {
       PetscBool eq;
-      PetscCall(PetscStrcmp(names[i], cs->contact_set[s], &eq));
+      PetscCall(PetscStrcmp(names[i], mesh->area_set[s], &eq));
       if (eq) set = i;
     }
     if (set < 0) continue; /* reported by ContactSetUp */
@@ -433,9 +413,8 @@ static PetscErrorCode SerialContactAreas(const Case *cs, const MeshData *md, cha
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ProblemCreateMesh(Problem *pb)
+PetscErrorCode MeshCreate(MPI_Comm comm, const MeshOptions *opt, Mesh *pb)
 {
-  const Case    *cs = pb->cs;
   MeshData       md;
   PetscErrorCode ierr = 0;
   DM             dm, dmd = NULL;
@@ -446,11 +425,15 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
   PetscInt       dims[2] = {0, 0};
 
   PetscFunctionBeginUser;
+  pb->comm = comm;
+  pb->opt  = *opt;
+  PetscCallMPI(MPI_Comm_rank(comm, &pb->rank));
+  PetscCallMPI(MPI_Comm_size(comm, &pb->size));
   PetscCall(PetscMemzero(&md, sizeof(md)));
   /* rank 0 reads or generates; a failure there is reported on every rank */
   if (pb->rank == 0) {
     PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    ierr = MeshDataLoad(cs, &md);
+    ierr = MeshDataLoad(opt, &md);
     PetscCall(PetscPopErrorHandler());
   }
   PetscCall(AtritoRootError(pb->comm, ierr));
@@ -510,7 +493,7 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
   /* source ids (and tributary areas) as a field on the serial mesh, carried through distribution */
   PetscSection   idsec;
   Vec            idvec;
-  const PetscInt nid = cs->contact_per_area ? 3 : 2;
+  const PetscInt nid = pb->narea_set ? 3 : 2;
   {
     PetscReal   *area = NULL;
     PetscInt     pStart, pEnd, vStart, vEnd, n;
@@ -525,7 +508,7 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &idvec));
     if (nid == 3 && pb->rank == 0) {
       PetscCall(PetscCalloc1(md.nv, &area));
-      PetscCall(SerialContactAreas(cs, &md, names, is_cell, nnames, area));
+      PetscCall(SerialContactAreas(pb, &md, names, is_cell, nnames, area));
     }
     PetscCall(VecGetArray(idvec, &a));
     for (PetscInt p = pStart; p < pEnd; p++) {
@@ -543,7 +526,7 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
   if (pb->size > 1) {
     PetscPartitioner part;
     PetscCall(DMPlexGetPartitioner(dm, &part));
-    if (cs->partition_metis) {
+    if (opt->partition_metis) {
       PetscInt *sizes, *points = NULL;
       PetscCall(PetscCalloc1(pb->size, &sizes));
       if (pb->rank == 0) {
@@ -588,10 +571,9 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
     pb->nc     = cEnd - cStart;
     pb->nv     = vEnd - vStart;
     pb->vstart = vStart;
-    PetscCall(PetscMalloc5(8 * pb->nc, &pb->cv, 3 * pb->nv, &pb->X, pb->nv, &pb->node_id, pb->nc, &pb->elem_id, pb->nc, &pb->einfo));
+    PetscCall(PetscMalloc4(8 * pb->nc, &pb->cv, 3 * pb->nv, &pb->X, pb->nv, &pb->node_id, pb->nc, &pb->elem_id));
     PetscCall(PetscMalloc2(pb->nv, &pb->node_src, pb->nc, &pb->elem_src));
     if (nid == 3) PetscCall(PetscMalloc1(pb->nv, &pb->varea));
-    PetscCall(PetscMemzero(pb->einfo, pb->nc * sizeof(ElementInfo)));
     for (PetscInt c = cStart; c < cEnd; c++) {
       const PetscInt *cone;
       PetscInt        csize;
@@ -621,14 +603,13 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
     PetscCall(PetscSectionDestroy(&idsec));
     PetscCall(VecDestroy(&idvec));
   }
-  PetscCall(CreateSections(pb));
 
   /* report the partition */
   {
     PetscInt *counts = NULL;
     if (pb->rank == 0) PetscCall(PetscMalloc1(pb->size, &counts));
     PetscCallMPI(MPI_Gather(&pb->nc, 1, MPIU_INT, counts, 1, MPIU_INT, 0, pb->comm));
-    PetscCall(PetscPrintf(pb->comm, "mesh: %" PetscInt_FMT " vertices, %" PetscInt_FMT " hexahedra; partition %s; cells per rank:", pb->nv_global, pb->ne_global, pb->size == 1 ? "none" : (cs->partition_metis ? "metis" : "simple")));
+    PetscCall(PetscPrintf(pb->comm, "mesh: %" PetscInt_FMT " vertices, %" PetscInt_FMT " hexahedra; partition %s; cells per rank:", pb->nv_global, pb->ne_global, pb->size == 1 ? "none" : (opt->partition_metis ? "metis" : "simple")));
     if (pb->rank == 0)
       for (PetscMPIInt r = 0; r < pb->size; r++) PetscCall(PetscPrintf(PETSC_COMM_SELF, " %" PetscInt_FMT, counts[r]));
     PetscCall(PetscPrintf(pb->comm, "\n"));
@@ -637,24 +618,35 @@ PetscErrorCode ProblemCreateMesh(Problem *pb)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ProblemDestroyMesh(Problem *pb)
+PetscErrorCode MeshDestroy(Mesh *pb)
 {
   PetscFunctionBeginUser;
-  for (PetscInt b = 0; b < pb->nbc; b++) PetscCall(PetscFree3(pb->bc[b].loff, pb->bc[b].val, pb->bc[b].own));
-  PetscCall(PetscFree5(pb->cv, pb->X, pb->node_id, pb->elem_id, pb->einfo));
+  PetscCall(PetscFree4(pb->cv, pb->X, pb->node_id, pb->elem_id));
   PetscCall(PetscFree2(pb->node_src, pb->elem_src));
   PetscCall(PetscFree(pb->varea));
   PetscCall(PetscFree(pb->vloff));
   PetscCall(PetscFree(pb->vowned));
   PetscCall(PetscFree3(pb->cgdof, pb->cperm, pb->cndof));
+  PetscCall(IORowsDestroy(&pb->rv));
+  PetscCall(IORowsDestroy(&pb->rc));
+  PetscCall(PetscFree2(pb->vloc, pb->vrow));
   PetscCall(DMDestroy(&pb->dmr));
   PetscCall(DMDestroy(&pb->dm));
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode MeshSetAreaSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n <= 8, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "at most 8 sets carry tributary areas, got %" PetscInt_FMT, n);
+  m->narea_set = n;
+  for (PetscInt i = 0; i < n; i++) PetscCall(PetscStrncpy(m->area_set[i], sets[i], ATRITO_NAME_LEN));
+  PetscFunctionReturn(0);
+}
+
 /* Global dof of each displacement component of local vertex v (owned or not), -1 where the
    component is constrained: the global section numbers the unconstrained components in order. */
-PetscErrorCode ProblemVertexDofs(Problem *pb, PetscInt v, PetscInt idx[3])
+PetscErrorCode MeshVertexDofs(const Mesh *pb, PetscInt v, PetscInt idx[3])
 {
   PetscSection    ls, gs;
   PetscInt        goff, cdof, skipped = 0;

@@ -1,0 +1,77 @@
+/* The discrete problem: the residual R(u, lambda) = f_int - f_contact and its exact Jacobian
+   over the local cells and slave nodes, the plastic history (committed and trial), the
+   displacement vectors, and the nonlinear solver (SNES with the LU of lu.c by default).
+
+   State lifecycle: hist_c (committed) changes only in ProblemCommit; every residual or Jacobian
+   evaluation recomputes hist_t (trial) from hist_c and the current iterate. */
+#ifndef ATRITO_PROBLEM_H
+#define ATRITO_PROBLEM_H
+#include <petscsnes.h>
+#include "mesh.h"
+#include "bc.h"
+#include "contact.h"
+#include "material.h"
+#include "element.h"
+
+#define ATRITO_ERR_PROJECTION 3 /* failure status of a contact projection (beside MAT_ERR_*) */
+
+typedef enum { LU_ORDERING_MUMPS = 0, LU_ORDERING_ND } LUOrdering;
+
+typedef struct {
+  MPI_Comm    comm;
+  PetscMPIInt rank, size;
+  /* the modules, owned by the caller */
+  const Mesh *mesh;
+  const BCs  *bcs;
+  Contact     contact;
+  Material    material;
+  Element     element;
+  const MaterialKernel *mk;
+  const ElementKernel  *ek;
+
+  /* options */
+  PetscBool  assembly_coo;   /* Jacobian by coordinate (COO) assembly instead of MatSetValues */
+  LUOrdering lu_ordering;    /* LU by MUMPS: METIS nested dissection (direct calls) or MUMPS's own */
+  PetscReal  fault_nan_load; /* testing: once, a NaN in the residual at this load (< 0: off) */
+  PetscBool  fault_done;
+
+  /* history: committed and trial, nhc doubles per cell (nqp x material history + element state) */
+  PetscInt     nhc;
+  PetscReal   *hist_c, *hist_t;
+  ElementInfo *einfo;  /* per cell, from the last evaluation at a converged state */
+
+  /* solution */
+  Vec       U, Uc, Uprev;  /* current iterate, committed, previous committed (global)    */
+  Vec       Uloc, Floc;    /* local work vectors                                        */
+  PetscReal lambda;        /* load parameter at which the residual is evaluated         */
+  PetscInt  ndomain_err;   /* failed element or node evaluations in the last assembly   */
+  PetscInt  bad_cell_id;   /* source id of the first failing element, for messages      */
+  PetscInt  bad_status;
+
+  /* coordinate assembly: offset of each element block in coo_v (the contact blocks last) */
+  PetscCount  *coo_off;
+  PetscScalar *coo_v;
+
+  SNES snes;
+  Mat  J;
+  PetscLogEvent ev_residual, ev_jacobian;
+} Problem;
+
+/* -assembly_coo, -lu_ordering, -fault_nan_residual_at; the SNES and its options (-snes_*, -ksp_*, -pc_*) */
+PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb);
+/* on the mesh: history, vectors, the Jacobian (preallocated, COO pattern, near-null space) */
+PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact contact, Material mat, Element el);
+PetscErrorCode ProblemDestroy(Problem *pb);
+/* one evaluation at U and lambda: trial history, cell info, local residual in Floc (with the
+   boundary values in Uloc), failures counted collectively */
+PetscErrorCode ProblemEvaluate(Problem *pb, Vec U, PetscReal lambda);
+/* the residual and the Jacobian as SNES calls them (at pb->lambda) */
+PetscErrorCode ProblemFormFunction(SNES snes, Vec U, Vec F, void *ctx);
+PetscErrorCode ProblemFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
+/* Uloc = U with the boundary values at lambda */
+PetscErrorCode ProblemLocalWithBC(Problem *pb, Vec U, PetscReal lambda);
+/* the trial state of the last evaluation (at a converged U) becomes the committed one */
+PetscErrorCode ProblemCommit(Problem *pb, PetscReal lambda);
+/* after a checkpoint was read: the trial states start from the committed ones */
+PetscErrorCode ProblemRestored(Problem *pb);
+#endif

@@ -1,0 +1,190 @@
+/* Dirichlet boundary conditions (bc.h): options, the constraint mask of the section, the local
+   dof lists, the prescribed values at a load level, and the reactions. */
+#include <string.h>
+#include "bc.h"
+#include "util.h"
+#include "options.h"
+
+static PetscErrorCode ParseComponent(MPI_Comm comm, const char *opt, const char *s, PetscInt *c)
+{
+  PetscFunctionBeginUser;
+  if (!strcmp(s, "x") || !strcmp(s, "0")) *c = 0;
+  else if (!strcmp(s, "y") || !strcmp(s, "1")) *c = 1;
+  else if (!strcmp(s, "z") || !strcmp(s, "2")) *c = 2;
+  else SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s: unknown component '%s' (use x, y, z)", opt, s);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BCSetFromOptions(MPI_Comm comm, BCs *bcs)
+{
+  char     *bcnames[ATRITO_MAX_BC];
+  PetscInt  n = ATRITO_MAX_BC;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(bcs, sizeof(*bcs)));
+  PetscOptionsBegin(comm, NULL, "Boundary conditions", NULL);
+  PetscCall(PetscOptionsStringArray("-bc_names", "Dirichlet conditions, each described by -bc_<name>_set, _components, _values", NULL, bcnames, &n, &set));
+  PetscOptionsEnd();
+  bcs->n = set ? n : 0;
+  for (PetscInt b = 0; b < bcs->n; b++) {
+    BC      *bc = &bcs->bc[b];
+    char    *comps[3], prefix[ATRITO_NAME_LEN + 8], title[ATRITO_NAME_LEN + 32], opt[ATRITO_NAME_LEN + 32];
+    PetscInt nc = 3, nvals = 3;
+    PetscReal v3[3] = {0, 0, 0};
+
+    PetscCall(PetscStrncpy(bc->name, bcnames[b], sizeof(bc->name)));
+    PetscCall(PetscFree(bcnames[b]));
+    PetscCall(PetscStrncpy(bc->set, bc->name, sizeof(bc->set)));
+    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "bc_%s_", bc->name));
+    PetscCall(PetscSNPrintf(title, sizeof(title), "Boundary condition %s", bc->name));
+    PetscOptionsBegin(comm, prefix, title, NULL);
+    PetscCall(PetscOptionsString("-set", "Mesh set (label) of the condition", NULL, bc->set, bc->set, sizeof(bc->set), NULL));
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-bc_%s_components", bc->name));
+    PetscCall(PetscOptionsStringArray("-components", "Constrained components (x,y,z)", NULL, comps, &nc, &set));
+    PetscCheck(set && nc >= 1, comm, PETSC_ERR_USER_INPUT, "%s is required for the boundary condition '%s' (e.g. x,y,z)", opt, bc->name);
+    bc->ncomp = nc;
+    for (PetscInt k = 0; k < nc; k++) {
+      PetscCall(ParseComponent(comm, opt, comps[k], &bc->comp[k]));
+      PetscCall(PetscFree(comps[k]));
+      for (PetscInt j = 0; j < k; j++) PetscCheck(bc->comp[j] != bc->comp[k], comm, PETSC_ERR_USER_INPUT, "%s: component listed twice", opt);
+    }
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-bc_%s_values", bc->name));
+    PetscCall(PetscOptionsRealArray("-values", "Prescribed displacements at load 1 (ramped linearly)", NULL, v3, &nvals, &set));
+    PetscCheck(!set || nvals == nc, comm, PETSC_ERR_USER_INPUT, "%s needs %" PetscInt_FMT " values (one per component), got %" PetscInt_FMT, opt, nc, nvals);
+    PetscCall(AtritoCheckFinite(comm, opt, v3, 3));
+    for (int k = 0; k < 3; k++) bc->value[k] = v3[k];
+    PetscOptionsEnd();
+  }
+  PetscFunctionReturn(0);
+}
+
+/* which condition constrains each local (vertex, component); -1 where none */
+static PetscErrorCode Owners(BCs *bcs, const Mesh *m, PetscInt *owner, PetscInt *cmask)
+{
+  PetscBool *mark;
+  PetscInt   conflict = -1, conflict_g;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(m->nv, &mark));
+  for (PetscInt i = 0; i < 3 * m->nv; i++) owner[i] = -1;
+  if (cmask) PetscCall(PetscArrayzero(cmask, m->nv));
+  for (PetscInt b = 0; b < bcs->n; b++) {
+    const BC *bc = &bcs->bc[b];
+    PetscBool found;
+    PetscCall(PetscArrayzero(mark, m->nv));
+    PetscCall(MeshMarkSetVertices(m, bc->set, mark, &found));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, m->comm));
+    PetscCheck(found, m->comm, PETSC_ERR_USER_INPUT, "-bc_%s_set: the mesh has no set named '%s'", bc->name, bc->set);
+    for (PetscInt v = 0; v < m->nv; v++) {
+      if (!mark[v]) continue;
+      for (PetscInt k = 0; k < bc->ncomp; k++) {
+        const PetscInt c = bc->comp[k], o = owner[3 * v + c];
+        if (o >= 0 && conflict < 0) {
+          /* the same component prescribed twice: allowed only when the values agree */
+          PetscInt ko = 0;
+          while (ko < bcs->bc[o].ncomp && bcs->bc[o].comp[ko] != c) ko++;
+          if (bcs->bc[o].value[ko] != bc->value[k]) conflict = b * ATRITO_MAX_BC + o;
+        }
+        owner[3 * v + c] = b;
+        if (cmask) cmask[v] |= 1 << c;
+      }
+    }
+  }
+  PetscCall(PetscFree(mark));
+  PetscCall(MPIU_Allreduce(&conflict, &conflict_g, 1, MPIU_INT, MPI_MAX, m->comm));
+  PetscCheck(conflict_g < 0, m->comm, PETSC_ERR_USER_INPUT, "boundary conditions '%s' and '%s' prescribe different values to the same displacement component", bcs->bc[conflict_g / ATRITO_MAX_BC].name, bcs->bc[conflict_g % ATRITO_MAX_BC].name);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BCComputeMask(BCs *bcs, const Mesh *m, PetscInt **cmask)
+{
+  PetscInt *owner;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(m->nv, cmask));
+  PetscCall(PetscMalloc1(3 * m->nv, &owner));
+  PetscCall(Owners(bcs, m, owner, *cmask));
+  PetscCall(PetscFree(owner));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BCSetUp(BCs *bcs, const Mesh *m)
+{
+  PetscInt  *owner;
+  PetscBool *mark;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(3 * m->nv, &owner, m->nv, &mark));
+  PetscCall(Owners(bcs, m, owner, NULL));
+  for (PetscInt b = 0; b < bcs->n; b++) {
+    BC       *bd = &bcs->bc[b];
+    PetscBool found;
+    PetscCall(PetscArrayzero(mark, m->nv));
+    PetscCall(MeshMarkSetVertices(m, bd->set, mark, &found));
+    bd->nset = bd->nown = 0;
+    for (PetscInt v = 0; v < m->nv; v++)
+      if (mark[v]) {
+        for (PetscInt k = 0; k < bd->ncomp; k++)
+          if (owner[3 * v + bd->comp[k]] == b) bd->nset++;
+        if (m->vowned[v]) bd->nown++;
+      }
+    PetscCall(PetscMalloc3(bd->nset, &bd->loff, bd->nset, &bd->val, bd->nown, &bd->own));
+    bd->nset = bd->nown = 0;
+    for (PetscInt v = 0; v < m->nv; v++)
+      if (mark[v]) {
+        for (PetscInt k = 0; k < bd->ncomp; k++)
+          if (owner[3 * v + bd->comp[k]] == b) {
+            bd->loff[bd->nset]  = m->vloff[v] + bd->comp[k];
+            bd->val[bd->nset++] = bd->value[k];
+          }
+        if (m->vowned[v]) bd->own[bd->nown++] = v;
+      }
+  }
+  PetscCall(PetscFree2(owner, mark));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BCDestroy(BCs *bcs)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt b = 0; b < bcs->n; b++) PetscCall(PetscFree3(bcs->bc[b].loff, bcs->bc[b].val, bcs->bc[b].own));
+  PetscFunctionReturn(0);
+}
+
+void BCApply(const BCs *bcs, PetscScalar *u, PetscReal lambda)
+{
+  for (PetscInt b = 0; b < bcs->n; b++)
+    for (PetscInt k = 0; k < bcs->bc[b].nset; k++) u[bcs->bc[b].loff[k]] = lambda * bcs->bc[b].val[k];
+}
+
+/* The assembled residual at the vertices of each set, summed over the owned vertices (every
+   vertex counted once; through the unconstrained twin DM, whose global vector holds every
+   component), on all ranks. */
+PetscErrorCode BCReactions(const BCs *bcs, const Mesh *m, Vec Floc, PetscReal (*R)[3])
+{
+  Vec                Rg;
+  const PetscScalar *r;
+  PetscSection       gs;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(m->dmr, &Rg));
+  PetscCall(VecZeroEntries(Rg));
+  PetscCall(DMLocalToGlobal(m->dmr, Floc, ADD_VALUES, Rg));
+  PetscCall(DMGetGlobalSection(m->dmr, &gs));
+  PetscCall(VecGetOwnershipRange(Rg, &rstart, NULL));
+  PetscCall(VecGetArrayRead(Rg, &r));
+  for (PetscInt b = 0; b < bcs->n; b++) {
+    R[b][0] = R[b][1] = R[b][2] = 0;
+    for (PetscInt k = 0; k < bcs->bc[b].nown; k++) {
+      PetscInt goff;
+      PetscCall(PetscSectionGetOffset(gs, m->vstart + bcs->bc[b].own[k], &goff));
+      for (int i = 0; i < 3; i++) R[b][i] += PetscRealPart(r[goff - rstart + i]);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(Rg, &r));
+  PetscCall(DMRestoreGlobalVector(m->dmr, &Rg));
+  if (bcs->n) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &R[0][0], 3 * bcs->n, MPIU_REAL, MPIU_SUM, m->comm));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,289 @@
+/* The load stepper (stepper.h): increments of the load parameter with growth and cut-back, the
+   predictor, the Newton solve with the frame recurrence at every iteration and the stall test,
+   the chattering check, the commit and the results of every converged step. */
+#include <math.h>
+#include <string.h>
+#include "stepper.h"
+#include "options.h"
+
+PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(st, sizeof(*st)));
+  st->dt0           = 0.1;
+  st->dt_min        = 1e-6;
+  st->cut           = 0.5;
+  st->grow          = 1.5;
+  st->grow_its      = 5;
+  st->max_cuts      = 10;
+  st->stall_its     = 0;
+  st->stall_factor  = 0.9;
+  st->max_steps     = 100000;
+  st->predictor     = PREDICTOR_AUTO;
+  st->chatter_check = PETSC_TRUE;
+  PetscOptionsBegin(comm, NULL, "Load stepping and Newton", NULL);
+    {
+      PetscInt steps = 10;
+      PetscCall(PetscOptionsInt("-load_steps", "Initial number of load steps (first increment 1/N)", NULL, steps, &steps, NULL));
+      PetscCheck(steps >= 1, comm, PETSC_ERR_USER_INPUT, "-load_steps %" PetscInt_FMT " must be >= 1", steps);
+      st->dt0 = 1.0 / steps;
+    }
+    st->dt_max = st->dt0;
+    PetscCall(PetscOptionsReal("-load_dt_max", "Largest load increment", NULL, st->dt_max, &st->dt_max, NULL));
+    PetscCall(PetscOptionsReal("-load_dt_min", "Smallest load increment before the run stops", NULL, st->dt_min, &st->dt_min, NULL));
+    PetscCall(PetscOptionsReal("-load_cut_factor", "Increment factor after a failed step", NULL, st->cut, &st->cut, NULL));
+    PetscCall(PetscOptionsReal("-load_grow_factor", "Increment factor after an easy step", NULL, st->grow, &st->grow, NULL));
+    PetscCall(PetscOptionsInt("-load_grow_its", "A step is easy when Newton took at most this many iterations", NULL, st->grow_its, &st->grow_its, NULL));
+    PetscCall(PetscOptionsInt("-load_max_cuts", "Successive cuts allowed in one step", NULL, st->max_cuts, &st->max_cuts, NULL));
+    PetscCall(PetscOptionsInt("-load_max_steps", "Largest number of converged steps", NULL, st->max_steps, &st->max_steps, NULL));
+    PetscCall(PetscOptionsInt("-newton_stall_its", "Newton has stalled (the step fails at once) when |R| has not fallen below -newton_stall_factor times its value this many iterations earlier (0: never)", NULL, st->stall_its, &st->stall_its, NULL));
+    PetscCall(PetscOptionsReal("-newton_stall_factor", "See -newton_stall_its", NULL, st->stall_factor, &st->stall_factor, NULL));
+    {
+      const char *preds[] = {"none", "extrapolate", "tangent", "auto", "Predictor", "PREDICTOR_", NULL};
+      PetscInt    p       = (PetscInt)st->predictor;
+      PetscCall(PetscOptionsEList("-load_predictor", "Start of each step: the committed state, the extrapolation of the last two, the tangent response to the load increment, or auto (extrapolation when there is a previous step, else tangent)", NULL, preds, 4, preds[p], &p, NULL));
+      st->predictor = (Predictor)p;
+    }
+    PetscCheck(st->dt_max > 0 && st->dt_max <= 1, comm, PETSC_ERR_USER_INPUT, "-load_dt_max %g must lie in (0, 1]", (double)st->dt_max);
+    PetscCheck(st->dt_min > 0 && st->dt_min <= st->dt0, comm, PETSC_ERR_USER_INPUT, "-load_dt_min %g must lie in (0, first increment %g]", (double)st->dt_min, (double)st->dt0);
+    PetscCheck(st->cut > 0 && st->cut < 1, comm, PETSC_ERR_USER_INPUT, "-load_cut_factor %g must lie in (0, 1)", (double)st->cut);
+    PetscCheck(st->grow >= 1 && PetscIsNormalReal(st->grow), comm, PETSC_ERR_USER_INPUT, "-load_grow_factor %g must be >= 1", (double)st->grow);
+    PetscCheck(st->max_cuts >= 0, comm, PETSC_ERR_USER_INPUT, "-load_max_cuts %" PetscInt_FMT " must be >= 0", st->max_cuts);
+    PetscCheck(st->max_steps >= 1, comm, PETSC_ERR_USER_INPUT, "-load_max_steps %" PetscInt_FMT " must be >= 1", st->max_steps);
+    PetscCheck(st->stall_its >= 0 && st->stall_its < 256, comm, PETSC_ERR_USER_INPUT, "-newton_stall_its %" PetscInt_FMT " must lie in [0, 255]", st->stall_its);
+    PetscCheck(st->stall_factor > 0 && st->stall_factor <= 1, comm, PETSC_ERR_USER_INPUT, "-newton_stall_factor %g must lie in (0, 1]", (double)st->stall_factor);
+
+  PetscCall(PetscOptionsBool("-contact_chatter_check", "Fail (and cut) a step whose last Newton iteration still changed the set of nodes in contact", NULL, st->chatter_check, &st->chatter_check, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+/* Tangent predictor: U = Uc - J(Uc)^-1 [R(Uc, lam_c) + dR/dlam dl], the response of the committed
+   state, linearised, to the increment of the prescribed displacements (the derivative along the
+   load by a one-sided difference: it only seeds Newton, the Jacobian itself stays exact). */
+static PetscErrorCode TangentPredictor(Problem *pb, Vec R, Vec W, PetscReal lam_c, PetscReal dl, PetscBool *ok)
+{
+  KSP                 ksp;
+  KSPConvergedReason  kr;
+  const PetscReal     eps = 1e-6;
+
+  SNES                snes = pb->snes;
+  Mat                 J    = pb->J;
+
+  PetscFunctionBeginUser;
+  *ok = PETSC_FALSE;
+  pb->lambda = lam_c;
+  PetscCall(ProblemFormJacobian(snes, pb->Uc, J, J, pb));
+  if (pb->ndomain_err) PetscFunctionReturn(0);
+  PetscCall(ProblemFormFunction(snes, pb->Uc, W, pb));
+  pb->lambda = lam_c + eps * dl;
+  PetscCall(ProblemFormFunction(snes, pb->Uc, R, pb));
+  if (pb->ndomain_err) PetscFunctionReturn(0);
+  /* R <- W + (R - W)/eps */
+  PetscCall(VecAXPBY(R, 1.0 - 1.0 / eps, 1.0 / eps, W));
+  PetscCall(VecScale(R, -1.0));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPSetOperators(ksp, J, J));
+  PetscCall(KSPSolve(ksp, R, W));
+  PetscCall(KSPGetConvergedReason(ksp, &kr));
+  if (kr < 0) PetscFunctionReturn(0);
+  PetscCall(VecWAXPY(pb->U, 1.0, pb->Uc, W));
+  *ok = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* PETSc's convergence test, and a stall test: the iteration stops as diverged when |R| has not
+   fallen below stall_factor times its value stall_its iterations earlier (a step whose active set
+   or stick/slip pattern keeps Newton from making progress is cut at once instead of running to the
+   iteration limit) */
+static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
+{
+  Stepper       *pb = (Stepper *)ctx;
+  const PetscInt w  = pb->stall_its;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, NULL));
+  if (it == 0) pb->stalled = PETSC_FALSE;
+  if (it < 256) pb->fnorm_hist[it] = fnorm;
+  if (*reason == SNES_CONVERGED_ITERATING && w > 0 && it >= w && it < 256 && !(fnorm < pb->stall_factor * pb->fnorm_hist[it - w])) {
+    *reason         = SNES_DIVERGED_DTOL;
+    pb->stalled     = PETSC_TRUE;
+    pb->stall_fnorm = fnorm;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Start of every Newton iteration: the frame recurrence of eq 30 at the current iterate */
+static PetscErrorCode NewtonUpdate(SNES snes, PetscInt it)
+{
+  Problem           *pb;
+  Vec                X;
+  const PetscScalar *u;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetApplicationContext(snes, &pb));
+  if (!ContactNumSlaves(pb->contact)) PetscFunctionReturn(0);
+  PetscCall(SNESGetSolution(snes, &X));
+  PetscCall(ProblemLocalWithBC(pb, X, pb->lambda));
+  PetscCall(VecGetArrayRead(pb->Uloc, &u));
+  PetscCall(ContactSeed(pb->contact, u, pb->lambda, PETSC_FALSE));
+  PetscCall(VecRestoreArrayRead(pb->Uloc, &u));
+  PetscCall(ContactRecordActive(pb->contact));
+  PetscFunctionReturn(0);
+}
+
+static const char *FailureCause(const Stepper *st, const Problem *pb, SNESConvergedReason reason, char *buf, size_t len)
+{
+  if (reason == SNES_DIVERGED_DTOL && st->stalled)
+    snprintf(buf, len, "Newton stalled (|R| %.3g did not fall below %g times its value %d iterations earlier, -newton_stall_its)", (double)st->stall_fnorm, (double)st->stall_factor, (int)st->stall_its);
+  else if (reason == SNES_DIVERGED_INNER && pb->bad_status < 0) snprintf(buf, len, "contact chattering: %d nodes still entering or leaving contact at the last Newton iteration (node id %d)", (int)-pb->bad_status, (int)pb->bad_cell_id);
+  else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN || pb->ndomain_err) {
+    if (pb->bad_status == MAT_ERR_RETURNMAP) snprintf(buf, len, "the local return map did not converge (element id %d)", (int)pb->bad_cell_id);
+    else if (pb->bad_status == ATRITO_ERR_PROJECTION) snprintf(buf, len, "the projection of a slave node on a tool failed");
+    else snprintf(buf, len, "an element inverted (element id %d)", (int)pb->bad_cell_id);
+  } else if (reason == SNES_DIVERGED_FNORM_NAN) snprintf(buf, len, "NaN or Inf in the residual");
+  else if (reason == SNES_DIVERGED_MAX_IT) snprintf(buf, len, "Newton did not converge in the allowed iterations");
+  else snprintf(buf, len, "Newton diverged (%s)", SNESConvergedReasons[reason]);
+  return buf;
+}
+
+/* frame seeds of the contact nodes at U: from the committed frames (a step, or a retry, starts
+   again from them) */
+static PetscErrorCode SeedFrames(Problem *pb, Vec U, PetscReal lambda)
+{
+  const PetscScalar *u;
+
+  PetscFunctionBeginUser;
+  PetscCall(ProblemLocalWithBC(pb, U, lambda));
+  PetscCall(VecGetArrayRead(pb->Uloc, &u));
+  PetscCall(ContactSeed(pb->contact, u, lambda, PETSC_TRUE));
+  PetscCall(VecRestoreArrayRead(pb->Uloc, &u));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
+{
+  SNES           snes = pb->snes;
+  KSP            ksp;
+  PC             pc;
+  Vec            R, W;
+  PetscReal      lam_c = 0, dl = st->dt0, dl_prev = 0, rhist[256];
+  PetscInt       itshist[256], step = 0, total_its = 0, total_cuts = 0;
+  CheckpointInfo ci;
+  PetscLogDouble t0, t1;
+  const PetscBool contact = ContactNumTools(pb->contact) > 0 ? PETSC_TRUE : PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  st->pb = pb;
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(VecDuplicate(pb->U, &R));
+  PetscCall(VecDuplicate(pb->U, &W));
+  PetscCall(SNESSetConvergenceHistory(snes, rhist, itshist, 256, PETSC_TRUE));
+  PetscCall(SNESSetUpdate(snes, NewtonUpdate));
+  PetscCall(SNESSetConvergenceTest(snes, NewtonConverged, st, NULL));
+  if (res->restart[0]) {
+    /* continue: the committed state of the checkpoint */
+    PetscCall(CheckpointRead(pb, res->restart, &ci));
+    step       = ci.step;
+    lam_c      = ci.lambda;
+    dl         = ci.dl;
+    dl_prev    = ci.dl_prev;
+    total_its  = ci.total_its;
+    total_cuts = ci.total_cuts;
+    PetscCall(ResultsOpen(res, pb, &ci));
+    PetscCall(PetscPrintf(pb->comm, "restart from %s: step %" PetscInt_FMT ", load %.6g\n", res->restart, step, (double)lam_c));
+  } else {
+    PetscCall(VecZeroEntries(pb->U));
+    PetscCall(VecZeroEntries(pb->Uc));
+    PetscCall(VecZeroEntries(pb->Uprev));
+    PetscCall(ProblemEvaluate(pb, pb->U, 0.0));
+    PetscCall(ResultsOpen(res, pb, NULL));
+  }
+
+  while (lam_c < 1.0 - 1e-12) {
+    SNESConvergedReason reason;
+    PetscInt            its = 0, cuts = 0, nres;
+    PetscReal           lam_t;
+
+    PetscCheck(step < st->max_steps, pb->comm, PETSC_ERR_NOT_CONVERGED, "-load_max_steps %" PetscInt_FMT " reached at load %g", st->max_steps, (double)lam_c);
+    for (;;) {
+      dl    = PetscMin(dl, 1.0 - lam_c);
+      lam_t = (1.0 - lam_c - dl < 1e-12) ? 1.0 : lam_c + dl; /* the last step ends exactly at 1 */
+      pb->lambda = lam_t;
+      PetscCall(VecCopy(pb->Uc, pb->U));
+      /* a fresh factorisation for every step, so that a step depends only on the committed state:
+         a run restarted from a checkpoint repeats the same iterations (PETSc's MUMPS interface:
+         analysis and scaling again; -lu_ordering nd keeps its analysis, a function of the
+         nonzero pattern alone) */
+      PetscCall(PCReset(pc));
+      /* frame seeds from the committed state (a retry starts again from the committed frames) */
+      PetscCall(SeedFrames(pb, pb->Uc, lam_c));
+      const PetscBool extrapolate = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0;
+      if (st->predictor == PREDICTOR_TANGENT || (st->predictor == PREDICTOR_AUTO && !extrapolate)) {
+        PetscBool ok;
+        PetscCall(TangentPredictor(pb, R, W, lam_c, dl, &ok));
+        if (!ok) PetscCall(VecCopy(pb->Uc, pb->U));
+      } else if (extrapolate) PetscCall(VecAXPBYPCZ(pb->U, -dl / dl_prev, dl / dl_prev, 1.0, pb->Uprev, pb->Uc));
+      pb->lambda     = lam_t;
+      pb->bad_status = 0;
+      PetscCall(SeedFrames(pb, pb->U, lam_t));
+      PetscCall(SNESSolve(snes, NULL, pb->U));
+      PetscCall(SNESGetConvergedReason(snes, &reason));
+      PetscCall(SNESGetIterationNumber(snes, &its));
+      /* converged: one more evaluation at the solution (trial states, cell info, reactions) */
+      if (reason > 0) PetscCall(ProblemEvaluate(pb, pb->U, lam_t));
+      if (reason > 0 && contact && st->chatter_check && its > 0) {
+        /* the active set must have settled: a node entering or leaving contact with a
+           significant force in the last iteration means the step is not converged */
+        PetscInt nch, nodeid;
+        PetscCall(ContactChatter(pb->contact, &nch, &nodeid));
+        if (nch) {
+          reason         = SNES_DIVERGED_INNER; /* reported below as chattering */
+          pb->bad_status = -nch;
+          pb->bad_cell_id = nodeid;
+        }
+      }
+      if (reason > 0) break;
+      {
+        char buf[256];
+        FailureCause(st, pb, reason, buf, sizeof(buf));
+        cuts++;
+        total_cuts++;
+        PetscCheck(cuts <= st->max_cuts && dl * st->cut >= st->dt_min, pb->comm, PETSC_ERR_NOT_CONVERGED,
+                   "step %" PetscInt_FMT " failed at load %.6g (increment %.3g) after %" PetscInt_FMT " cuts: %s; the results up to load %.6g are complete in %s",
+                   step + 1, (double)lam_t, (double)dl, cuts - 1, buf, (double)lam_c, res->dir);
+        PetscCall(PetscPrintf(pb->comm, "step %" PetscInt_FMT " at load %.6g: %s; retrying with increment %.3g\n", step + 1, (double)lam_t, buf, (double)(dl * st->cut)));
+        dl *= st->cut;
+      }
+    }
+    /* commit the trial states of that evaluation */
+    PetscCall(ProblemCommit(pb, lam_t));
+    dl_prev = dl;
+    lam_c   = lam_t;
+    step++;
+    total_its += its;
+    PetscCall(SNESGetConvergenceHistory(snes, NULL, NULL, &nres));
+    PetscCall(ResultsWriteStep(res, pb, step, lam_c, its, rhist[0], rhist[PetscMax(nres - 1, 0)], lam_c >= 1.0 - 1e-12 ? PETSC_TRUE : PETSC_FALSE));
+    PetscCall(PetscTime(&t1));
+    PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0));
+    if (its <= st->grow_its) dl = PetscMin(dl * st->grow, st->dt_max);
+    if (res->checkpoint_interval > 0 && (step % res->checkpoint_interval == 0 || lam_c >= 1.0 - 1e-12)) {
+      ci.step       = step;
+      ci.lambda     = lam_c;
+      ci.dl         = dl;
+      ci.dl_prev    = dl_prev;
+      ci.total_its  = total_its;
+      ci.total_cuts = total_cuts;
+      PetscCall(CheckpointWrite(res, pb, &ci));
+    }
+  }
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscPrintf(pb->comm, "done: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " cuts, %.2f s\n", step, total_its, total_cuts, t1 - t0));
+
+  PetscCall(ResultsClose(res));
+  PetscCall(VecDestroy(&R));
+  PetscCall(VecDestroy(&W));
+  PetscFunctionReturn(0);
+}

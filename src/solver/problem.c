@@ -1,0 +1,376 @@
+/* The discrete problem (problem.h): assembly of the residual and the exact Jacobian over the
+   local cells (through the element and material kernels) and the slave nodes (through the
+   contact object), the SNES with its solver options, commit of the plastic history.
+
+   State lifecycle: hist_c (committed) changes only in ProblemCommit; every residual or Jacobian
+   evaluation recomputes hist_t (trial) from hist_c and the current iterate. */
+#include <math.h>
+#include <string.h>
+#include "problem.h"
+#include "lu.h"
+#include "options.h"
+
+#define MAX_EDOF 81 /* element dofs: up to 27 nodes */
+
+/* Element loop: local residual into Floc (if residual), Jacobian into J (if J); per-cell info if
+   asked. Failures are counted, and reported collectively. */
+static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool residual, Mat J, PetscBool want_info)
+{
+  const Mesh          *m  = pb->mesh;
+  const ElementKernel *ek = pb->ek;
+  const int            nen = ek->nen, nd = 3 * ek->nen;
+  const PetscScalar   *u;
+  PetscScalar         *f = NULL;
+  PetscInt             nfail = 0, badid = PETSC_MAX_INT, badst = 0, cfail = 0;
+  double               ke[MAX_EDOF * MAX_EDOF], kc[MAX_EDOF * MAX_EDOF], X[MAX_EDOF], ue[MAX_EDOF], fe[MAX_EDOF];
+  PetscInt             gfail;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGlobalToLocal(m->dm, U, INSERT_VALUES, pb->Uloc));
+  PetscCall(VecGetArray(pb->Uloc, (PetscScalar **)&u));
+  BCApply(pb->bcs, (PetscScalar *)u, lambda);
+  if (residual) {
+    PetscCall(VecZeroEntries(pb->Floc));
+    PetscCall(VecGetArray(pb->Floc, &f));
+  }
+  if (J && !pb->coo_v) PetscCall(MatZeroEntries(J));
+  for (PetscInt e = 0; e < m->nc; e++) {
+    const PetscInt *cv = m->cv + nen * e;
+    for (int a = 0; a < nen; a++) {
+      const PetscInt o = m->vloff[cv[a]];
+      for (int i = 0; i < 3; i++) {
+        X[3 * a + i]  = m->X[3 * cv[a] + i];
+        ue[3 * a + i] = PetscRealPart(u[o + i]);
+      }
+    }
+    const int st = ek->kernel(ek->ctx, pb->mk, X, ue, pb->hist_c + (size_t)e * pb->nhc, fe, J ? ke : NULL, pb->hist_t + (size_t)e * pb->nhc, want_info ? &pb->einfo[e] : NULL);
+    if (st != MAT_OK) {
+      nfail++;
+      if (m->elem_id[e] < badid) {
+        badid = m->elem_id[e];
+        badst = st;
+      }
+      continue;
+    }
+    if (residual)
+      for (int a = 0; a < nen; a++) {
+        const PetscInt o = m->vloff[cv[a]];
+        for (int i = 0; i < 3; i++) f[o + i] += fe[3 * a + i];
+      }
+    if (J) {
+      const PetscInt       n = m->cndof[e];
+      const unsigned char *p = m->cperm + nd * e;
+      if (pb->coo_v) {
+        PetscScalar *v = pb->coo_v + pb->coo_off[e];
+        for (PetscInt r = 0; r < n; r++)
+          for (PetscInt c = 0; c < n; c++) v[r * n + c] = ke[p[r] * nd + p[c]];
+      } else {
+        for (PetscInt r = 0; r < n; r++)
+          for (PetscInt c = 0; c < n; c++) kc[r * n + c] = ke[p[r] * nd + p[c]];
+        PetscCall(MatSetValues(J, n, m->cgdof + nd * e, n, m->cgdof + nd * e, kc, ADD_VALUES));
+      }
+    }
+  }
+  PetscCall(ContactAssemble(pb->contact, u, lambda, f, J, pb->coo_v ? pb->coo_v + pb->coo_off[m->nc] : NULL, &cfail));
+  if (cfail && !nfail) badst = ATRITO_ERR_PROJECTION;
+  nfail += cfail;
+  PetscCall(VecRestoreArray(pb->Uloc, (PetscScalar **)&u));
+  if (residual) PetscCall(VecRestoreArray(pb->Floc, &f));
+  if (J && pb->coo_v) PetscCall(MatSetValuesCOO(J, pb->coo_v, INSERT_VALUES));
+  else if (J) {
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  /* collective failure report: count, and the smallest failing element id with its cause */
+  PetscCall(MPIU_Allreduce(&nfail, &gfail, 1, MPIU_INT, MPI_SUM, pb->comm));
+  pb->ndomain_err = gfail;
+  if (gfail) {
+    PetscInt pair[2] = {badid, badst}, gmin;
+    PetscCall(MPIU_Allreduce(&pair[0], &gmin, 1, MPIU_INT, MPI_MIN, pb->comm));
+    if (gmin != badid) pair[1] = 0;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pair[1], 1, MPIU_INT, MPI_MAX, pb->comm));
+    pb->bad_cell_id = gmin;
+    pb->bad_status  = pair[1];
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemEvaluate(Problem *pb, Vec U, PetscReal lambda)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Assemble(pb, U, lambda, PETSC_TRUE, NULL, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemFormFunction(SNES snes, Vec U, Vec F, void *ctx)
+{
+  Problem *pb = (Problem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(pb->ev_residual, 0, 0, 0, 0));
+  PetscCall(Assemble(pb, U, pb->lambda, PETSC_TRUE, NULL, PETSC_FALSE));
+  PetscCall(VecZeroEntries(F));
+  if (pb->ndomain_err) PetscCall(SNESSetFunctionDomainError(snes));
+  else PetscCall(DMLocalToGlobal(pb->mesh->dm, pb->Floc, ADD_VALUES, F));
+  if (pb->fault_nan_load >= 0 && !pb->fault_done && pb->lambda >= pb->fault_nan_load) {
+    /* fault injection for the tests: one NaN, once */
+    PetscInt n;
+    PetscCall(VecGetLocalSize(F, &n));
+    if (!pb->rank && n > 0) {
+      PetscScalar *a;
+      PetscCall(VecGetArray(F, &a));
+      a[0] = NAN;
+      PetscCall(VecRestoreArray(F, &a));
+    }
+    pb->fault_done = PETSC_TRUE;
+  }
+  PetscCall(PetscLogEventEnd(pb->ev_residual, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx)
+{
+  Problem *pb = (Problem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(pb->ev_jacobian, 0, 0, 0, 0));
+  PetscCall(Assemble(pb, U, pb->lambda, PETSC_FALSE, P, PETSC_FALSE));
+  if (pb->ndomain_err) PetscCall(SNESSetJacobianDomainError(snes));
+  if (J != P) {
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(PetscLogEventEnd(pb->ev_jacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemLocalWithBC(Problem *pb, Vec U, PetscReal lambda)
+{
+  PetscScalar *u;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGlobalToLocal(pb->mesh->dm, U, INSERT_VALUES, pb->Uloc));
+  PetscCall(VecGetArray(pb->Uloc, &u));
+  BCApply(pb->bcs, u, lambda);
+  PetscCall(VecRestoreArray(pb->Uloc, &u));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemCommit(Problem *pb, PetscReal lambda)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!pb->ndomain_err, pb->comm, PETSC_ERR_PLIB, "element evaluation failed at a converged state");
+  PetscCall(PetscArraycpy(pb->hist_c, pb->hist_t, (size_t)pb->mesh->nc * pb->nhc));
+  PetscCall(ContactCommit(pb->contact, lambda));
+  PetscCall(VecCopy(pb->Uc, pb->Uprev));
+  PetscCall(VecCopy(pb->U, pb->Uc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemRestored(Problem *pb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscArraycpy(pb->hist_t, pb->hist_c, (size_t)pb->mesh->nc * pb->nhc));
+  PetscCall(VecCopy(pb->Uc, pb->U));
+  PetscFunctionReturn(0);
+}
+
+/* modified Gram-Schmidt on n vectors (a mode may vanish where everything is constrained) */
+static PetscErrorCode VecOrthonormalize_Modes(PetscInt n, Vec v[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; i++) {
+    PetscReal nrm;
+    for (PetscInt j = 0; j < i; j++) {
+      PetscScalar d;
+      PetscCall(VecDot(v[i], v[j], &d));
+      PetscCall(VecAXPY(v[i], -d, v[j]));
+    }
+    PetscCall(VecNorm(v[i], NORM_2, &nrm));
+    if (nrm > 0) PetscCall(VecScale(v[i], 1.0 / nrm));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The rigid-body modes (3 translations, 3 rotations about the centroid of the reference
+   coordinates) on the unconstrained dofs, as the near-null space of the Jacobian: algebraic
+   multigrid (-pc_type gamg) needs them. */
+static PetscErrorCode SetNearNullSpace(Problem *pb, Mat J)
+{
+  Vec          modes[6];
+  MatNullSpace nsp;
+  PetscInt     rstart;
+  const Mesh  *msh = pb->mesh;
+  PetscReal    c[3] = {0, 0, 0}, n = msh->nvo;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < msh->nvo; k++)
+    for (int i = 0; i < 3; i++) c[i] += msh->X[3 * msh->vloc[k] + i];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, c, 3, MPIU_REAL, MPIU_SUM, pb->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_REAL, MPIU_SUM, pb->comm));
+  for (int i = 0; i < 3; i++) c[i] /= PetscMax(n, 1);
+  for (int m = 0; m < 6; m++) {
+    PetscScalar *a;
+    PetscCall(DMCreateGlobalVector(msh->dm, &modes[m]));
+    PetscCall(VecGetOwnershipRange(modes[m], &rstart, NULL));
+    PetscCall(VecGetArray(modes[m], &a));
+    for (PetscInt k = 0; k < msh->nvo; k++) {
+      const PetscReal *X = msh->X + 3 * msh->vloc[k], x[3] = {X[0] - c[0], X[1] - c[1], X[2] - c[2]};
+      PetscReal        v[3] = {0, 0, 0};
+      PetscInt         idx[3];
+      if (m < 3) v[m] = 1;
+      else { /* e_r x x for the axis r = m - 3 */
+        const int r = m - 3, r1 = (r + 1) % 3, r2 = (r + 2) % 3;
+        v[r1] = -x[r2];
+        v[r2] = x[r1];
+      }
+      PetscCall(MeshVertexDofs(msh, msh->vloc[k], idx));
+      for (PetscInt d = 0; d < 3; d++)
+        if (idx[d] >= 0) a[idx[d] - rstart] = v[d];
+    }
+    PetscCall(VecRestoreArray(modes[m], &a));
+  }
+  PetscCall(VecOrthonormalize_Modes(6, modes));
+  PetscCall(MatNullSpaceCreate(pb->comm, PETSC_FALSE, 6, modes, &nsp));
+  PetscCall(MatSetNearNullSpace(J, nsp));
+  PetscCall(MatNullSpaceDestroy(&nsp));
+  for (int m = 0; m < 6; m++) PetscCall(VecDestroy(&modes[m]));
+  PetscFunctionReturn(0);
+}
+
+
+PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
+{
+  KSP ksp;
+  PC  pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(pb, sizeof(*pb)));
+  pb->comm           = comm;
+  pb->lu_ordering    = LU_ORDERING_ND;
+  pb->fault_nan_load = -1;
+  PetscCallMPI(MPI_Comm_rank(comm, &pb->rank));
+  PetscCallMPI(MPI_Comm_size(comm, &pb->size));
+  PetscOptionsBegin(comm, NULL, "Assembly and linear solver", NULL);
+  PetscCall(PetscOptionsBool("-assembly_coo", "Assemble the Jacobian in coordinate form (faster, more memory)", NULL, pb->assembly_coo, &pb->assembly_coo, NULL));
+  {
+    const char *ords[] = {"mumps", "nd", "LUOrdering", "LU_ORDERING_", NULL};
+    PetscInt    o      = (PetscInt)pb->lu_ordering;
+    PetscCall(PetscOptionsEList("-lu_ordering", "Ordering of the LU factorisation (-pc_type lu with MUMPS): nd = METIS nested dissection of the Jacobian's graph, MUMPS called directly; mumps = MUMPS's own ordering (PORD here) through PETSc's interface", NULL, ords, 2, ords[o], &o, NULL));
+    pb->lu_ordering = (LUOrdering)o;
+  }
+  PetscCall(PetscOptionsReal("-fault_nan_residual_at", "Testing: once, put a NaN into the residual at the first evaluation at or beyond this load", NULL, pb->fault_nan_load, &pb->fault_nan_load, NULL));
+  PetscOptionsEnd();
+  if (pb->lu_ordering == LU_ORDERING_ND) PetscCall(LUNDCheckOptions(comm, NULL));
+
+  /* Newton with the backtracking line search, LU by MUMPS; every -snes_, -ksp_, -pc_ option
+     applies on top */
+  PetscCall(SNESCreate(comm, &pb->snes));
+  PetscCall(SNESSetTolerances(pb->snes, 1e-10, 1e-9, 1e-12, 25, -1));
+  PetscCall(SNESGetKSP(pb->snes, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(SNESSetFromOptions(pb->snes));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact contact, Material mat, Element el)
+{
+  Vec R;
+  KSP ksp;
+  PC  pc;
+
+  PetscFunctionBeginUser;
+  pb->mesh     = m;
+  pb->bcs      = bcs;
+  pb->contact  = contact;
+  pb->material = mat;
+  pb->element  = el;
+  PetscCall(MaterialGetKernel(mat, &pb->mk));
+  PetscCall(ElementGetKernel(el, &pb->ek));
+  PetscCheck(pb->ek->nen == 8, pb->comm, PETSC_ERR_SUP, "-element_type %s: the mesh has 8-node hexahedra, the element %d nodes", pb->ek->name, pb->ek->nen);
+  PetscCall(PetscLogEventRegister("AtritoResidual", DM_CLASSID, &pb->ev_residual));
+  PetscCall(PetscLogEventRegister("AtritoJacobian", DM_CLASSID, &pb->ev_jacobian));
+  pb->nhc = (PetscInt)pb->ek->nqp * pb->mk->nhist + pb->ek->nstate;
+  PetscCall(PetscMalloc2((size_t)m->nc * pb->nhc, &pb->hist_c, (size_t)m->nc * pb->nhc, &pb->hist_t));
+  PetscCall(PetscArrayzero(pb->hist_c, (size_t)m->nc * pb->nhc));
+  for (PetscInt e = 0; e < m->nc; e++)
+    for (int q = 0; q < pb->ek->nqp; q++) pb->mk->history_init(pb->mk->ctx, pb->hist_c + (size_t)e * pb->nhc + (size_t)q * pb->mk->nhist);
+  PetscCall(PetscArraycpy(pb->hist_t, pb->hist_c, (size_t)m->nc * pb->nhc));
+  PetscCall(PetscCalloc1(m->nc, &pb->einfo));
+  PetscCall(DMCreateGlobalVector(m->dm, &pb->U));
+  PetscCall(VecDuplicate(pb->U, &pb->Uc));
+  PetscCall(VecDuplicate(pb->U, &pb->Uprev));
+  PetscCall(DMCreateLocalVector(m->dm, &pb->Uloc));
+  PetscCall(VecDuplicate(pb->Uloc, &pb->Floc));
+
+  PetscCall(DMCreateMatrix(m->dm, &pb->J));
+  PetscCall(SetNearNullSpace(pb, pb->J));
+  PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  if (pb->assembly_coo) {
+    /* coordinate assembly: the element blocks' (i, j) once, then the contact blocks; each
+       Jacobian then only fills values */
+    const PetscInt nd = 3 * pb->ek->nen;
+    PetscCount     ncoo = 0, nct;
+    PetscInt      *ci, *cj;
+    PetscCall(PetscMalloc1(m->nc + 1, &pb->coo_off));
+    for (PetscInt e = 0; e < m->nc; e++) {
+      pb->coo_off[e] = ncoo;
+      ncoo += m->cndof[e] * m->cndof[e];
+    }
+    pb->coo_off[m->nc] = ncoo;
+    PetscCall(ContactGetCOO(contact, &nct, NULL, NULL));
+    PetscCall(PetscMalloc2(ncoo + nct, &ci, ncoo + nct, &cj));
+    for (PetscInt e = 0; e < m->nc; e++) {
+      const PetscInt n = m->cndof[e], *g = m->cgdof + nd * e;
+      for (PetscInt r = 0; r < n; r++)
+        for (PetscInt c = 0; c < n; c++) {
+          ci[pb->coo_off[e] + r * n + c] = g[r];
+          cj[pb->coo_off[e] + r * n + c] = g[c];
+        }
+    }
+    PetscCall(ContactGetCOO(contact, &nct, ci + ncoo, cj + ncoo));
+    PetscCall(MatSetPreallocationCOO(pb->J, ncoo + nct, ci, cj));
+    PetscCall(PetscFree2(ci, cj));
+    PetscCall(PetscCalloc1(ncoo + nct, &pb->coo_v));
+  }
+  PetscCall(VecDuplicate(pb->U, &R));
+  PetscCall(SNESSetFunction(pb->snes, R, ProblemFormFunction, pb));
+  PetscCall(VecDestroy(&R));
+  PetscCall(SNESSetJacobian(pb->snes, pb->J, pb->J, ProblemFormJacobian, pb));
+  PetscCall(SNESSetApplicationContext(pb->snes, pb));
+  PetscCall(SNESGetKSP(pb->snes, &ksp));
+  PetscCall(KSPGetPC(ksp, &pc));
+  if (pb->lu_ordering == LU_ORDERING_ND) {
+    /* LU by MUMPS, unless the options chose another preconditioner or package: MUMPS called
+       directly with a METIS nested-dissection ordering (fewer flops than PORD, and balanced
+       subtrees for the ranks; doc/design.md) */
+    PetscBool     islu;
+    MatSolverType st;
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &islu));
+    if (islu) {
+      PetscCall(PCFactorGetMatSolverType(pc, &st));
+      if (st && !strcmp(st, MATSOLVERMUMPS)) PetscCall(PCSetLUND(pc));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemDestroy(Problem *pb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SNESDestroy(&pb->snes));
+  PetscCall(MatDestroy(&pb->J));
+  PetscCall(VecDestroy(&pb->U));
+  PetscCall(VecDestroy(&pb->Uc));
+  PetscCall(VecDestroy(&pb->Uprev));
+  PetscCall(VecDestroy(&pb->Uloc));
+  PetscCall(VecDestroy(&pb->Floc));
+  PetscCall(PetscFree2(pb->hist_c, pb->hist_t));
+  PetscCall(PetscFree(pb->einfo));
+  PetscCall(PetscFree(pb->coo_off));
+  PetscCall(PetscFree(pb->coo_v));
+  PetscFunctionReturn(0);
+}
