@@ -4,14 +4,21 @@
 #   make check    install what is missing, build, run the test suite
 #   make bench    assembly throughput benchmark (writes doc/performance.md)
 
+# Nothing here may ask an installed package at parse time: on a fresh machine the Makefile is read
+# before scripts/install-deps.sh (the order-only prerequisite $(DEPS_STAMP)) has installed
+# anything. Whatever needs PETSc, pkg-config or python3 is a deferred (=) variable, expanded when a
+# recipe runs, after the install (tests/test_build.sh checks this).
 CC       := mpicc
+AR       := gcc-ar
+INSTALL_DEPS ?= bash scripts/install-deps.sh
 PETSC_CFLAGS = $(shell pkg-config --cflags PETSc 2>/dev/null)
 PETSC_LIBS   = $(shell pkg-config --libs PETSc 2>/dev/null)
 HDF5_DIR := /usr/lib/x86_64-linux-gnu/hdf5/openmpi
 CPPFLAGS = -Iinclude $(PETSC_CFLAGS) -I/usr/include/hdf5/openmpi
 CFLAGS   ?= -O3 -march=native -flto=auto -g -std=c11 -Wall -Wextra -Wno-unused-parameter -fno-math-errno
 LDLIBS   = $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -ldmumps -lmumps_common -lmetis -lm
-PYTHON   := $(shell /usr/bin/python3 -c "import h5py, matplotlib" >/dev/null 2>&1 && echo /usr/bin/python3 || echo python3)
+# the system Python if it has h5py and matplotlib (installed by install-deps.sh), else python3 on PATH
+PYTHON   = $(shell /usr/bin/python3 -c "import h5py, matplotlib" >/dev/null 2>&1 && echo /usr/bin/python3 || echo python3)
 
 LIB_SRC  := $(filter-out src/main.c,$(wildcard src/*.c src/*/*.c))
 LIB_OBJ  := $(LIB_SRC:src/%.c=build/%.o)
@@ -23,7 +30,7 @@ DEPS_STAMP := build/.deps-ok
 all: bin/atrito $(TEST_BIN)
 
 $(DEPS_STAMP):
-	@bash scripts/install-deps.sh
+	@$(INSTALL_DEPS)
 	@mkdir -p build && touch $@
 
 deps: $(DEPS_STAMP)
@@ -33,13 +40,13 @@ build/%.o: src/%.c $(wildcard include/*.h) | $(DEPS_STAMP)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
 
 build/lib.a: $(LIB_OBJ)
-	gcc-ar rcs $@ $^
+	$(AR) rcs $@ $^
 
-bin/atrito: build/main.o build/lib.a
+bin/atrito: build/main.o build/lib.a | $(DEPS_STAMP)
 	@mkdir -p bin
 	$(CC) $(CFLAGS) $^ -o $@ $(LDLIBS)
 
-bin/test_%: tests/test_%.c tests/testutil.h build/lib.a $(wildcard include/*.h)
+bin/test_%: tests/test_%.c tests/testutil.h build/lib.a $(wildcard include/*.h) | $(DEPS_STAMP)
 	@mkdir -p bin
 	$(CC) $(CPPFLAGS) $(CFLAGS) $< build/lib.a -o $@ $(LDLIBS)
 
@@ -49,7 +56,7 @@ SAN_OBJ   := $(LIB_SRC:src/%.c=build-san/%.o)
 build-san/%.o: src/%.c $(wildcard include/*.h) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(SAN_FLAGS) -c $< -o $@
-bin-san/test_%: tests/test_%.c tests/testutil.h $(SAN_OBJ)
+bin-san/test_%: tests/test_%.c tests/testutil.h $(SAN_OBJ) | $(DEPS_STAMP)
 	@mkdir -p bin-san
 	$(CC) $(CPPFLAGS) $(SAN_FLAGS) $< $(SAN_OBJ) -o $@ $(LDLIBS)
 sanitize: $(TEST_BIN:bin/%=bin-san/%)

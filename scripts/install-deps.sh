@@ -1,22 +1,49 @@
 #!/usr/bin/env bash
-# Installs the Debian packages the code needs, only those that are missing.
+# Installs the Debian packages the code needs, only those that are missing. Works on a bare
+# Debian 12 machine: the package lists are read first (a fresh image has none), the compilers,
+# pkg-config and python3 are installed with the libraries, sudo is used only when not root (and
+# is not needed then), and what was asked for is checked afterwards.
+# (INSTALL_DEPS_ROOT and INSTALL_DEPS_PYTHON move the file checks, for tests/test_build.sh.)
 set -euo pipefail
+R=${INSTALL_DEPS_ROOT:-}
+PY=${INSTALL_DEPS_PYTHON:-/usr/bin/python3}
+have() { command -v "$1" >/dev/null 2>&1; }
 need=()
-pkg-config --exists PETSc 2>/dev/null || need+=(petsc-dev)
-[ -f /usr/include/metis.h ] || need+=(libmetis-dev)
-[ -f /usr/include/dmumps_c.h ] || need+=(libmumps-dev)
-[ -f /usr/include/hdf5/openmpi/hdf5.h ] || need+=(libhdf5-openmpi-dev)
-command -v mpiexec >/dev/null 2>&1 || need+=(openmpi-bin)
-command -v mpicc >/dev/null 2>&1 || need+=(libopenmpi-dev)
+have make || need+=(make)
+have gcc && have gcc-ar || need+=(gcc)
+have pkg-config || need+=(pkg-config)
+[ -x "$PY" ] || need+=(python3)
+{ have pkg-config && pkg-config --exists PETSc 2>/dev/null; } || need+=(petsc-dev)
+[ -f "$R/usr/include/metis.h" ] || need+=(libmetis-dev)
+[ -f "$R/usr/include/dmumps_c.h" ] || need+=(libmumps-dev)
+[ -f "$R/usr/include/hdf5/openmpi/hdf5.h" ] || need+=(libhdf5-openmpi-dev)
+have mpiexec || need+=(openmpi-bin)
+have mpicc || need+=(libopenmpi-dev)
 # an optimised BLAS: MUMPS factorisations are about 10x faster than with the reference BLAS
-ls /usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3 >/dev/null 2>&1 || need+=(libopenblas0-pthread)
-/usr/bin/python3 -c "import numpy" >/dev/null 2>&1 || need+=(python3-numpy)
-/usr/bin/python3 -c "import h5py" >/dev/null 2>&1 || need+=(python3-h5py)
-/usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1 || need+=(python3-matplotlib)
-if [ ${#need[@]} -gt 0 ]; then
-  echo "install-deps: installing ${need[*]}"
-  SUDO=""
-  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${need[@]}" make gcc >/dev/null
+[ -e "$R/usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3" ] || need+=(libopenblas0-pthread)
+"$PY" -c "import numpy" >/dev/null 2>&1 || need+=(python3-numpy)
+"$PY" -c "import h5py" >/dev/null 2>&1 || need+=(python3-h5py)
+"$PY" -c "import matplotlib" >/dev/null 2>&1 || need+=(python3-matplotlib)
+[ ${#need[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${need[*]}"
+SUDO=()
+if [ "$(id -u)" -ne 0 ]; then
+  if ! have sudo; then
+    echo "install-deps: error: not root and no sudo; install these packages as root: apt-get install ${need[*]}" >&2
+    exit 1
+  fi
+  SUDO=(sudo)
+fi
+# sudo resets the environment: DEBIAN_FRONTEND goes through env
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
+
+missing=()
+have mpicc || missing+=(mpicc)
+have pkg-config && pkg-config --exists PETSc 2>/dev/null || missing+=("PETSc (pkg-config)")
+"$PY" -c "import h5py, numpy" >/dev/null 2>&1 || missing+=("python3 with h5py and numpy")
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "install-deps: error: still missing after apt-get install: ${missing[*]}" >&2
+  exit 1
 fi

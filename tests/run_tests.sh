@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Test runner: every test program prints one line per check, "ok - ..." or "not ok - ...";
 # this script runs them all and ends with the line "N passed, N failed".
+# A new test: a program tests/test_NAME.c (built by make as bin/test_NAME) or a script
+# tests/test_NAME.sh (sourcing tests/lib.sh), printing its lines, and one `run` line below.
 set -u
 cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -25,6 +27,7 @@ run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit
   pass=$((pass + p)); fail=$((fail + f))
 }
 
+run build           bash tests/test_build.sh
 run material        bin/test_material
 run fe              bin/test_fe
 run meshgen         bin/test_meshgen
@@ -37,6 +40,7 @@ run lu-np2          mpiexec -n 2 bin/test_lu
 run solver          bash tests/test_solver.sh
 run contact         bash tests/test_contact.sh
 run benchmark       bash tests/test_benchmark.sh
+run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh
 run bad-input       bash tests/test_bad_input.sh
 run memory          bash tests/test_memory.sh

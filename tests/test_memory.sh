@@ -5,10 +5,9 @@
 # integration runs of the solver (plasticity, contact, checkpoint and restart, 1 and 2 ranks).
 set -u
 cd "$(dirname "$0")/.."
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
-OUT=${TEST_OUT:-build/test-out}/memory
-rm -rf "$OUT"; mkdir -p "$OUT"
-if ! make -s sanitize >"$OUT/build.log" 2>&1; then echo "not ok - sanitizer build failed"; tail -5 "$OUT/build.log"; exit 1; fi
+. tests/lib.sh
+OUT=$(test_out memory)
+if ! make -s sanitize >"$OUT/build.log" 2>&1; then not_ok "sanitizer build failed"; tail -5 "$OUT/build.log"; exit 1; fi
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
 leaks() { grep -cE '^\[ *[0-9]+\] *[0-9]+ bytes' "$1"; }
@@ -16,25 +15,25 @@ leaks() { grep -cE '^\[ *[0-9]+\] *[0-9]+ bytes' "$1"; }
 for t in fe material contact; do
   ASAN_OPTIONS=detect_leaks=1 bin-san/test_$t >"$OUT/$t.log" 2>&1; rc=$?
   n=$(grep -c '^ok' "$OUT/$t.log")
-  [ $rc -eq 0 ] && ! grep -q 'ERROR: \|runtime error' "$OUT/$t.log" && echo "ok - test_$t under ASan/UBSan/LSan: $n checks, no invalid access, no leak" ||
-    { echo "not ok - test_$t under the sanitizers (exit $rc)"; grep -m5 'ERROR\|runtime error\|SUMMARY' "$OUT/$t.log" | sed 's/^/    /'; }
+  [ $rc -eq 0 ] && ! grep -q 'ERROR: \|runtime error' "$OUT/$t.log" && ok "test_$t under ASan/UBSan/LSan: $n checks, no invalid access, no leak" ||
+    { not_ok "test_$t under the sanitizers (exit $rc)"; grep -m5 'ERROR\|runtime error\|SUMMARY' "$OUT/$t.log" | indent; }
 done
 for t in meshgen tool output; do
   # MPI's plugins keep memory until exit: leaks are checked by PETSc's -malloc_dump instead
   ASAN_OPTIONS=detect_leaks=0 bin-san/test_$t -malloc_debug -malloc_dump >"$OUT/$t.log" 2>&1; rc=$?
   n=$(grep -c '^ok' "$OUT/$t.log"); l=$(leaks "$OUT/$t.log")
-  [ $rc -eq 0 ] && [ "$l" -eq 0 ] && ! grep -q 'ERROR: \|runtime error' "$OUT/$t.log" && echo "ok - test_$t under ASan/UBSan and -malloc_dump: $n checks, no invalid access, no unfreed PETSc memory" ||
-    { echo "not ok - test_$t (exit $rc, $l unfreed blocks)"; grep -m5 'ERROR\|runtime error\|bytes' "$OUT/$t.log" | sed 's/^/    /'; }
+  [ $rc -eq 0 ] && [ "$l" -eq 0 ] && ! grep -q 'ERROR: \|runtime error' "$OUT/$t.log" && ok "test_$t under ASan/UBSan and -malloc_dump: $n checks, no invalid access, no unfreed PETSc memory" ||
+    { not_ok "test_$t (exit $rc, $l unfreed blocks)"; grep -m5 'ERROR\|runtime error\|bytes' "$OUT/$t.log" | indent; }
 done
 
 md() { # md NP NAME ARGS...: an integration run under -malloc_debug -malloc_dump
   local np=$1 name=$2; shift 2
-  mpiexec --oversubscribe -n "$np" bin/atrito "$@" -output_dir "$OUT/$name" -malloc_debug -malloc_dump </dev/null >"$OUT/$name.log" 2>&1; local rc=$?
+  atrito_rc "$np" "$name" "$@" -malloc_debug -malloc_dump
   local l; l=$(leaks "$OUT/$name.log")
-  [ $rc -eq 0 ] && [ "$l" -eq 0 ] && echo "ok - -malloc_debug -malloc_dump, $name (np=$np): clean exit, no unfreed memory" ||
-    { echo "not ok - $name (np=$np) under -malloc_dump: exit $rc, $l unfreed blocks"; grep -m5 'bytes\|error' "$OUT/$name.log" | sed 's/^/    /'; }
+  [ $RC -eq 0 ] && [ "$l" -eq 0 ] && ok "-malloc_debug -malloc_dump, $name (np=$np): clean exit, no unfreed memory" ||
+    { not_ok "$name (np=$np) under -malloc_dump: exit $RC, $l unfreed blocks"; grep -m5 'bytes\|error' "$OUT/$name.log" | indent; }
 }
 md 1 contact -options_file cases/block_sphere.opts -checkpoint_interval 4 -load_max_steps 100
 md 2 restart -options_file cases/block_sphere.opts -restart "$OUT/contact/checkpoint.h5" -output_interval 0
 md 2 coons -options_file cases/hemisphere_friction.opts -tool_punch_motion 0,0,2 -load_steps 2 -assembly_coo 1
-md 2 gmsh -mesh_file tests/data/two_hex.msh -bc_names fix,pull -bc_fix_set left -bc_fix_components x,y,z -bc_pull_set right -bc_pull_components x -bc_pull_values 0.2 -load_steps 2
+md 2 gmsh -mesh_file tests/data/two_hex.msh -bc_names fix,pull -bc_fix_set left -bc_pull_set right -bc_fix_components x,y,z -bc_pull_components x -bc_pull_values 0.2 -load_steps 2

@@ -5,39 +5,27 @@
 # duplicated.
 set -u
 cd "$(dirname "$0")/.."
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
-PY=${PYTHON:-/usr/bin/python3}
-OUT=${TEST_OUT:-build/test-out}/restart
-rm -rf "$OUT"; mkdir -p "$OUT"
+. tests/lib.sh
+OUT=$(test_out restart)
 CASE="-options_file cases/block_sphere.opts -load_steps 40 -load_dt_max 0.025 -output_interval 3"
-run() { local np=$1; shift; mpiexec --oversubscribe -n "$np" bin/atrito $CASE "$@" </dev/null; }
+run() { local np=$1; shift; $MPI "$np" $A $CASE "$@" </dev/null; }
 
 check() { # check REF DIR DIGITS LABEL: histories equal, fields valid with the same steps
-  $PY tests/compare_history.py "$1/history.csv" "$2/history.csv" "$3" "$4: history.csv"
-  $PY tests/compare_history.py "$1/contact.csv" "$2/contact.csv" "$3" "$4: contact.csv"
-  $PY - "$1" "$2" "$4" <<'PYEOF'
-import subprocess, sys, h5py
-a, b, label = sys.argv[1:4]
-valid = subprocess.run([sys.executable, "tests/check_fields.py", b, "-q"], capture_output=True).returncode == 0
-sa = [int(h5py.File(a + "/fields.h5", "r")["steps"][k].attrs["step"]) for k in h5py.File(a + "/fields.h5", "r")["steps"]]
-sb = [int(h5py.File(b + "/fields.h5", "r")["steps"][k].attrs["step"]) for k in h5py.File(b + "/fields.h5", "r")["steps"]]
-rows = open(b + "/history.csv").read().splitlines()[1:]
-steps = [int(r.split(",")[0]) for r in rows]
-ok = valid and sorted(sa) == sorted(sb) and steps == sorted(set(steps))
-print(("ok" if ok else "not ok") + f" - {label}: fields valid ({valid}), field steps {len(sb)} (uninterrupted {len(sa)}), history rows {len(steps)}, no duplicate")
-PYEOF
+  compare "$1/history.csv" "$2/history.csv" "$3" "$4: history.csv"
+  compare "$1/contact.csv" "$2/contact.csv" "$3" "$4: contact.csv"
+  pycheck restart_fields "$1" "$2" "$4"
 }
 
-run 1 -output_dir "$OUT/ref" >"$OUT/ref.log" 2>&1 || echo "not ok - reference run failed"
+run 1 -output_dir "$OUT/ref" >"$OUT/ref.log" 2>&1 || not_ok "reference run failed"
 
 # 1. a clean stop after 7 steps, restarted at the same rank count
 run 1 -output_dir "$OUT/stop" -checkpoint_interval 2 -load_max_steps 7 >"$OUT/stop1.log" 2>&1
-run 1 -output_dir "$OUT/stop" -checkpoint_interval 2 -restart "$OUT/stop/checkpoint.h5" >"$OUT/stop2.log" 2>&1 || echo "not ok - restart after a stop failed"
-grep -q "restart from .*: step 6," "$OUT/stop2.log" && echo "ok - restart from the checkpoint of step 6 (the last before the stop at step 7)" || echo "not ok - restart did not start from step 6"
+run 1 -output_dir "$OUT/stop" -checkpoint_interval 2 -restart "$OUT/stop/checkpoint.h5" >"$OUT/stop2.log" 2>&1 || not_ok "restart after a stop failed"
+grep -q "restart from .*: step 6," "$OUT/stop2.log" && ok "restart from the checkpoint of step 6 (the last before the stop at step 7)" || not_ok "restart did not start from step 6"
 check "$OUT/ref" "$OUT/stop" 10 "stopped and restarted (np=1)"
 
 # 2. killed with SIGKILL mid-run, restarted
-mpiexec --oversubscribe -n 1 bin/atrito $CASE -output_dir "$OUT/kill" -checkpoint_interval 3 </dev/null >"$OUT/kill1.log" 2>&1 &
+$MPI 1 $A $CASE -output_dir "$OUT/kill" -checkpoint_interval 3 </dev/null >"$OUT/kill1.log" 2>&1 &
 pid=$!
 for _ in $(seq 1 400); do
   n=$( { wc -l <"$OUT/kill/history.csv"; } 2>/dev/null || echo 0)
@@ -46,15 +34,15 @@ for _ in $(seq 1 400); do
 done
 pkill -KILL -f "output_dir $OUT/kill" ; wait $pid 2>/dev/null
 rows=$(($(wc -l <"$OUT/kill/history.csv") - 1))
-run 1 -output_dir "$OUT/kill" -checkpoint_interval 3 -restart "$OUT/kill/checkpoint.h5" >"$OUT/kill2.log" 2>&1 || echo "not ok - restart after SIGKILL failed"
+run 1 -output_dir "$OUT/kill" -checkpoint_interval 3 -restart "$OUT/kill/checkpoint.h5" >"$OUT/kill2.log" 2>&1 || not_ok "restart after SIGKILL failed"
 echo "# killed with $rows history rows written; $(grep -o 'restart from .*' "$OUT/kill2.log")"
 check "$OUT/ref" "$OUT/kill" 10 "killed (SIGKILL) and restarted (np=1)"
 
 # 3. a checkpoint of a 1-rank run continued on 2 ranks
 run 1 -output_dir "$OUT/np" -checkpoint_interval 4 -load_max_steps 9 >"$OUT/np1.log" 2>&1
-run 2 -output_dir "$OUT/np" -restart "$OUT/np/checkpoint.h5" >"$OUT/np2.log" 2>&1 || echo "not ok - restart on 2 ranks failed"
+run 2 -output_dir "$OUT/np" -restart "$OUT/np/checkpoint.h5" >"$OUT/np2.log" 2>&1 || not_ok "restart on 2 ranks failed"
 check "$OUT/ref" "$OUT/np" 8 "1-rank checkpoint continued on 2 ranks"
 
 # 4. a checkpoint of another case is refused with a clear error
 run 1 -output_dir "$OUT/bad" -box_cells 4,4,2 -restart "$OUT/np/checkpoint.h5" >"$OUT/bad.log" 2>&1 </dev/null
-grep -q "atrito: error: -restart .*not the same mesh or case" "$OUT/bad.log" && echo "ok - a checkpoint of another mesh is refused: $(grep -o 'atrito: error.*' "$OUT/bad.log" | cut -c1-120)" || echo "not ok - a checkpoint of another mesh was not refused"
+grep -q "atrito: error: -restart .*not the same mesh or case" "$OUT/bad.log" && ok "a checkpoint of another mesh is refused: $(grep -o 'atrito: error.*' "$OUT/bad.log" | cut -c1-120)" || not_ok "a checkpoint of another mesh was not refused"

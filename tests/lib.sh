@@ -1,0 +1,45 @@
+# Shared by the integration test scripts (tests/test_*.sh); source it after cd to the repository
+# root:   cd "$(dirname "$0")/.." && . tests/lib.sh
+# Every check prints one line "ok - ..." or "not ok - ..." (tests/run_tests.sh counts them).
+#
+#   OUT=$(test_out NAME)          a fresh output folder $TEST_OUT/NAME
+#   atrito NP NAME ARGS...        run bin/atrito on NP ranks with -output_dir $OUT/NAME, log in
+#                                 $OUT/NAME.log; prints "not ok" and returns 1 if the run fails
+#   atrito_rc NP NAME ARGS...     the same for a run expected to fail: no report, exit status in RC
+#   ok MSG / not_ok MSG           a check's line;  cmd | indent  for details under it
+#   compare A B DIGITS LABEL      two CSV histories to DIGITS digits (tests/compare_history.py)
+#   pycheck NAME ARGS...          tests/checks/NAME.py (prints its own ok / not ok line)
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+PY=${PYTHON:-/usr/bin/python3}
+TEST_OUT=${TEST_OUT:-build/test-out}
+A=bin/atrito
+MPI="mpiexec --oversubscribe -n"
+ATRITO_TIMEOUT=${ATRITO_TIMEOUT:-600}
+# Swift hardening of the benchmark's aluminium (tests/check_tension.py's K EPS0 N E)
+SWIFT="589 1e-4 0.216 69004"
+
+ok() { echo "ok - $*"; }
+not_ok() { echo "not ok - $*"; }
+indent() { sed 's/^/    /'; }
+
+test_out() { # test_out NAME: empty $TEST_OUT/NAME, printed
+  local d="$TEST_OUT/$1"
+  rm -rf "$d" && mkdir -p "$d" && echo "$d"
+}
+
+atrito() { # atrito NP NAME ARGS...
+  local np=$1 name=$2; shift 2
+  if ! timeout "$ATRITO_TIMEOUT" $MPI "$np" $A "$@" -output_dir "$OUT/$name" >"$OUT/$name.log" 2>&1 </dev/null; then
+    not_ok "run $name (np=$np) failed:"; tail -n 5 "$OUT/$name.log" | indent; return 1
+  fi
+}
+
+atrito_rc() { # atrito_rc NP NAME ARGS...: RC is the exit status
+  local np=$1 name=$2; shift 2
+  timeout "$ATRITO_TIMEOUT" $MPI "$np" $A "$@" -output_dir "$OUT/$name" >"$OUT/$name.log" 2>&1 </dev/null
+  RC=$?
+}
+
+compare() { $PY tests/compare_history.py "$@"; }
+pycheck() { local name=$1; shift; $PY "tests/checks/$name.py" "$@"; }
