@@ -1,12 +1,13 @@
-/* Rigid tools: a tool is a set of parametric patches (plane, sphere, cylinder, torus, Coons)
-   moving by a prescribed translation ramped with the load parameter. Geometry kernels on plain
-   arrays (no MPI); options parsing at the module boundary. Tools are small and replicated on
-   every rank. */
+/* Rigid tools: a tool is a set of parametric patches moving by a prescribed translation ramped
+   with the load parameter (or along a piecewise-linear path). Patch types (plane, sphere,
+   cylinder, torus, Coons, ...) sit behind a registry of operation tables (src/tool/toolimpl.h,
+   one file per type in src/tool/). Geometry kernels on plain arrays (no MPI); options parsing at
+   the module boundary. Tools are small and replicated on every rank. */
 #ifndef ATRITO_TOOL_H
 #define ATRITO_TOOL_H
 #include <petscsys.h>
+#include <petscviewer.h>
 
-typedef enum { PATCH_PLANE = 0, PATCH_SPHERE, PATCH_CYLINDER, PATCH_TORUS, PATCH_COONS } PatchType;
 typedef enum { CURVE_LINE = 0, CURVE_ARC } CurveType;
 
 /* A boundary curve of a Coons patch, parametrised by s in [0,1]: a straight segment from a to b,
@@ -30,38 +31,65 @@ typedef struct {
 #define TOOL_COONS_GRID 9
 
 /* Every patch maps (xi, eta) in [0,1]^2 to a point x(xi, eta) of its reference position (the tool
-   at load 0). Parameters per type (angles in radians inside the struct):
+   at load 0). Parameters per type (angles in radians):
    plane:    x = o + (u0 + xi (u1-u0)) e1 + (v0 + eta (v1-v0)) e2, e1, e2 orthonormal
    sphere:   centre c, radius R, axis a, reference direction e (unit, normal to a);
-             polar angle th = th0 + xi (th1-th0) from a, azimuth ph = ph0 + eta (ph1-ph0) from e
-   cylinder: axis point c, axis a, ref e, radius R; azimuth ph = ph0 + xi (ph1-ph0), height z = z0 + eta (z1-z0)
+             polar angle th = t0 + xi (t1-t0) from a, azimuth ph = s0 + eta (s1-s0) from e
+   cylinder: axis point c, axis a, ref e, radius R; azimuth ph = t0 + xi (t1-t0), height z = s0 + eta (s1-s0)
    torus:    centre c, axis a, ref e, major radius R (centre to tube axis), minor radius r;
-             azimuth ph = ph0 + xi (ph1-ph0) about a, tube angle ps = ps0 + eta (ps1-ps0), ps = 0
+             azimuth ph = t0 + xi (t1-t0) about a, tube angle ps = s0 + eta (s1-s0), ps = 0
              on the outer equator, ps = +pi/2 towards +a
    coons:    bilinearly blended patch of four curves: bottom C0(xi) (eta = 0), top C1(xi) (eta = 1),
              left D0(eta) (xi = 0), right D1(eta) (xi = 1); corners must coincide.
    The contact normal of the patch is sense * (x_xi × x_eta)/|x_xi × x_eta|, sense = +1 or -1 chosen
    so that it points out of the tool, towards the deformable body. */
 typedef struct {
-  PatchType type;
-  int       sense;
-  double    o[3], e1[3], e2[3], u0, u1, v0, v1;      /* plane */
-  double    c[3], a[3], e[3], R, r;                   /* sphere, cylinder, torus */
-  double    t0, t1, s0, s1;                           /* parameter ranges: first, second parameter */
-  Curve     C0, C1, D0, D1;                           /* coons */
-  double    bbox[6];                                  /* reference bounding box (set with the tool) */
-  int       has_box;                                  /* bbox is set                              */
-  /* set by PatchPrepare (coons): the four curves prepared and the grid of samples; without it
-     they are computed at every evaluation, with the same results */
-  int        prepared;
-  CurveFrame frame[4];                                /* C0, C1, D0, D1                           */
-  double     grid[TOOL_COONS_GRID][TOOL_COONS_GRID][3];
+  double o[3], e1[3], e2[3], u0, u1, v0, v1;
+} PlaneData;
+typedef struct { /* sphere, cylinder, torus: surfaces of revolution about the axis a */
+  double c[3], a[3], e[3], R, r;
+  double t0, t1, s0, s1; /* parameter ranges: first, second parameter */
+} RevolutionData;
+typedef struct {
+  Curve C0, C1, D0, D1;
+} CoonsData;
+
+/* the operations of a patch type (src/tool/toolimpl.h) */
+typedef struct _PatchOps PatchOps;
+
+/* A patch: plain data, usable by value in arrays. The small parameters of the built-in types live
+   in the union; `data` holds what a type allocates (a Coons patch's prepared frames and samples, a
+   meshed surface's facets), freed by PatchDestroy. A copy of a patch shares its `data`: prepare or
+   destroy only one of them. */
+typedef struct {
+  const PatchOps *ops;   /* the type (PatchSetType)                  */
+  int             sense; /* +1 or -1                                 */
+  union {
+    PlaneData      plane;
+    RevolutionData rev;
+    CoonsData      coons;
+  };
+  void  *data;
+  double bbox[6]; /* reference bounding box (set with the tool) */
+  int    has_box; /* bbox is set                              */
 } Patch;
 
+/* Registry of patch types: `create` sets a zeroed patch's operations (and defaults) */
+PetscErrorCode PatchRegister(const char name[], PetscErrorCode (*create)(Patch *));
+/* Registers the built-in types (once; src/tool/register.c) */
+PetscErrorCode PatchRegisterAll(void);
+/* Clears p (which must hold no allocated data) and gives it the registered type `type`, sense 1 */
+PetscErrorCode PatchSetType(Patch *p, const char type[]);
+/* The type name ("plane", ...); "" for a patch without a type */
+const char    *PatchGetType(const Patch *p);
 /* Prepares a patch whose parameters are set, once, for fast evaluation and projection (a Coons
    patch's curve frames and sample grid; nothing for the other types). Must be called again if the
    parameters change. */
-void PatchPrepare(Patch *p);
+PetscErrorCode PatchPrepare(Patch *p);
+/* Frees what the patch allocated (PatchPrepare); the parameters stay */
+PetscErrorCode PatchDestroy(Patch *p);
+/* One line describing the patch (type, sense, parameters) */
+PetscErrorCode PatchView(const Patch *p, PetscViewer v);
 
 typedef struct {
   char    name[PETSC_MAX_PATH_LEN];
@@ -105,12 +133,18 @@ int ToolProject(const Tool *t, const double shift[3], const double y[3], double 
    (a collapsed side of a Coons patch: x_xi x x_eta = 0), where the caller must difference. */
 int PatchNormalDerivative(const Patch *p, const double shift[3], const double y[3], const Projection *pr, double dn[9]);
 
-/* Options: -tool_names a,b and per tool -tool_<name>_... (see doc/tools.md). Collective;
-   errors name the option and value. */
+/* Options: -tool_names a,b and per tool -tool_<name>_... (see doc/tools.md), read in options
+   blocks titled "Tools" and "Tool <name>" (listed by -help). Collective; errors name the option
+   and value. */
 PetscErrorCode ToolsCreateFromOptions(MPI_Comm comm, PetscInt *ntools, Tool **tools);
 PetscErrorCode ToolsDestroy(PetscInt ntools, Tool **tools);
 /* The tool's translation at load parameter lambda: lambda * motion, or the piecewise-linear
    interpolation of its path (-tool_<name>_path l0,dx,dy,dz, l1,dx,dy,dz, ... with 0 = l0 < l1 < ...
    <= 1; held at the last point beyond it) */
 void ToolShift(const Tool *t, double lambda, double shift[3]);
+/* Path length travelled by the tool from load 0 to lambda: |lambda * motion|, or the sum of the
+   lengths of the path's linear pieces up to lambda */
+double ToolTravel(const Tool *t, double lambda);
+/* The tool: name, motion, bounding box, and one line per patch (ASCII viewer) */
+PetscErrorCode ToolView(const Tool *t, PetscViewer v);
 #endif

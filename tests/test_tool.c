@@ -6,6 +6,7 @@
 #include <string.h>
 #include <time.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 #include "testutil.h"
 #include "tool.h"
@@ -48,34 +49,44 @@ static void set3(double v[3], double x, double y, double z)
 }
 static double deg(double d) { return d * PI / 180.0; }
 
+/* a cleared patch of a registered type */
+static void settype(Patch *p, const char *type)
+{
+  if (PatchSetType(p, type)) {
+    printf("not ok - PatchSetType(%s) failed\n", type);
+    exit(1);
+  }
+}
+static int istype(const Patch *p, const char *type) { return !strcmp(PatchGetType(p), type); }
+
 /* axis a and reference e orthonormalised */
 static void frame(Patch *p, double ax, double ay, double az, double rx, double ry, double rz)
 {
-  set3(p->a, ax, ay, az);
-  unit(p->a);
-  set3(p->e, rx, ry, rz);
-  const double pa = dot(p->e, p->a);
-  for (int i = 0; i < 3; i++) p->e[i] -= pa * p->a[i];
-  unit(p->e);
+  set3(p->rev.a, ax, ay, az);
+  unit(p->rev.a);
+  set3(p->rev.e, rx, ry, rz);
+  const double pa = dot(p->rev.e, p->rev.a);
+  for (int i = 0; i < 3; i++) p->rev.e[i] -= pa * p->rev.a[i];
+  unit(p->rev.e);
 }
 
 static Patch make_plane(void)
 {
   Patch p;
   memset(&p, 0, sizeof(p));
-  p.type  = PATCH_PLANE;
+  settype(&p, "plane");
   p.sense = 1;
-  set3(p.o, 0.3, -0.2, 0.1);
-  set3(p.e1, 1, 0.4, -0.3);
-  unit(p.e1);
-  set3(p.e2, 0.2, 1, 0.5);
-  const double pr = dot(p.e2, p.e1);
-  for (int i = 0; i < 3; i++) p.e2[i] -= pr * p.e1[i];
-  unit(p.e2);
-  p.u0 = -0.5;
-  p.u1 = 0.7;
-  p.v0 = 0.1;
-  p.v1 = 1.2;
+  set3(p.plane.o, 0.3, -0.2, 0.1);
+  set3(p.plane.e1, 1, 0.4, -0.3);
+  unit(p.plane.e1);
+  set3(p.plane.e2, 0.2, 1, 0.5);
+  const double pr = dot(p.plane.e2, p.plane.e1);
+  for (int i = 0; i < 3; i++) p.plane.e2[i] -= pr * p.plane.e1[i];
+  unit(p.plane.e2);
+  p.plane.u0 = -0.5;
+  p.plane.u1 = 0.7;
+  p.plane.v0 = 0.1;
+  p.plane.v1 = 1.2;
   return p;
 }
 
@@ -83,15 +94,15 @@ static Patch make_sphere(int sense)
 {
   Patch p;
   memset(&p, 0, sizeof(p));
-  p.type  = PATCH_SPHERE;
+  settype(&p, "sphere");
   p.sense = sense;
-  set3(p.c, 0.1, 0.2, -0.3);
-  p.R = 1.3;
+  set3(p.rev.c, 0.1, 0.2, -0.3);
+  p.rev.R = 1.3;
   frame(&p, 0.2, 0.3, 1, 1, 0, 0);
-  p.t0 = deg(20);
-  p.t1 = deg(110);
-  p.s0 = deg(-30);
-  p.s1 = deg(80);
+  p.rev.t0 = deg(20);
+  p.rev.t1 = deg(110);
+  p.rev.s0 = deg(-30);
+  p.rev.s1 = deg(80);
   return p;
 }
 
@@ -99,15 +110,15 @@ static Patch make_cylinder(int sense)
 {
   Patch p;
   memset(&p, 0, sizeof(p));
-  p.type  = PATCH_CYLINDER;
+  settype(&p, "cylinder");
   p.sense = sense;
-  set3(p.c, -0.2, 0.1, 0.3);
-  p.R = 0.8;
+  set3(p.rev.c, -0.2, 0.1, 0.3);
+  p.rev.R = 0.8;
   frame(&p, 0.3, -0.2, 1, 0, 1, 0);
-  p.t0 = deg(10);
-  p.t1 = deg(200);
-  p.s0 = -0.5;
-  p.s1 = 0.9;
+  p.rev.t0 = deg(10);
+  p.rev.t1 = deg(200);
+  p.rev.s0 = -0.5;
+  p.rev.s1 = 0.9;
   return p;
 }
 
@@ -115,16 +126,16 @@ static Patch make_torus(int sense)
 {
   Patch p;
   memset(&p, 0, sizeof(p));
-  p.type  = PATCH_TORUS;
+  settype(&p, "torus");
   p.sense = sense;
-  set3(p.c, 0.2, -0.1, 0.05);
-  p.R = 1.2;
-  p.r = 0.35;
+  set3(p.rev.c, 0.2, -0.1, 0.05);
+  p.rev.R = 1.2;
+  p.rev.r = 0.35;
   frame(&p, -0.1, 0.2, 1, 1, 0.3, 0);
-  p.t0 = deg(0);
-  p.t1 = deg(120);
-  p.s0 = deg(-60);
-  p.s1 = deg(150);
+  p.rev.t0 = deg(0);
+  p.rev.t1 = deg(120);
+  p.rev.s0 = deg(-60);
+  p.rev.s1 = deg(150);
   return p;
 }
 
@@ -144,7 +155,7 @@ static Patch make_coons_cone(void)
   Patch  p;
   double a0[3], b0[3], c0[3], a1[3], b1[3], c1[3];
   memset(&p, 0, sizeof(p));
-  p.type  = PATCH_COONS;
+  settype(&p, "coons");
   p.sense = 1;
   set3(a0, 1, 0, 0);
   set3(b0, 0, 1, 0);
@@ -152,10 +163,10 @@ static Patch make_coons_cone(void)
   set3(a1, 1.2, 0, 1);
   set3(b1, 0, 1.2, 1);
   set3(c1, 0, 0, 1);
-  curve(&p.C0, CURVE_ARC, a0, b0, c0);
-  curve(&p.C1, CURVE_ARC, a1, b1, c1);
-  curve(&p.D0, CURVE_LINE, a0, a1, NULL);
-  curve(&p.D1, CURVE_LINE, b0, b1, NULL);
+  curve(&p.coons.C0, CURVE_ARC, a0, b0, c0);
+  curve(&p.coons.C1, CURVE_ARC, a1, b1, c1);
+  curve(&p.coons.D0, CURVE_LINE, a0, a1, NULL);
+  curve(&p.coons.D1, CURVE_LINE, b0, b1, NULL);
   return p;
 }
 
@@ -182,12 +193,12 @@ static void octant_coons(const double c[3], double R, Patch q[3])
   };
   for (int k = 0; k < 3; k++) {
     memset(&q[k], 0, sizeof(q[k]));
-    q[k].type  = PATCH_COONS;
+    settype(&q[k], "coons");
     q[k].sense = 1;
-    curve(&q[k].C0, CURVE_ARC, Q[k][0], Q[k][1], c); /* bottom: (0,0) -> (1,0) */
-    curve(&q[k].C1, CURVE_ARC, Q[k][3], Q[k][2], c); /* top:    (0,1) -> (1,1) */
-    curve(&q[k].D0, CURVE_ARC, Q[k][0], Q[k][3], c); /* left:   (0,0) -> (0,1) */
-    curve(&q[k].D1, CURVE_ARC, Q[k][1], Q[k][2], c); /* right:  (1,0) -> (1,1) */
+    curve(&q[k].coons.C0, CURVE_ARC, Q[k][0], Q[k][1], c); /* bottom: (0,0) -> (1,0) */
+    curve(&q[k].coons.C1, CURVE_ARC, Q[k][3], Q[k][2], c); /* top:    (0,1) -> (1,1) */
+    curve(&q[k].coons.D0, CURVE_ARC, Q[k][0], Q[k][3], c); /* left:   (0,0) -> (0,1) */
+    curve(&q[k].coons.D1, CURVE_ARC, Q[k][1], Q[k][2], c); /* right:  (1,0) -> (1,1) */
   }
 }
 
@@ -198,12 +209,12 @@ static Patch make_coons_collapsed(void)
   Patch        p;
   const double c[3] = {0, 0, 0}, N[3] = {0, 0, 1}, X[3] = {1, 0, 0}, Y[3] = {0, 1, 0};
   memset(&p, 0, sizeof(p));
-  p.type  = PATCH_COONS;
+  settype(&p, "coons");
   p.sense = -1; /* x_xi x x_eta points into the sphere */
-  curve(&p.C0, CURVE_LINE, N, N, NULL);
-  curve(&p.C1, CURVE_ARC, X, Y, c);
-  curve(&p.D0, CURVE_ARC, N, X, c);
-  curve(&p.D1, CURVE_ARC, N, Y, c);
+  curve(&p.coons.C0, CURVE_LINE, N, N, NULL);
+  curve(&p.coons.C1, CURVE_ARC, X, Y, c);
+  curve(&p.coons.D0, CURVE_ARC, N, X, c);
+  curve(&p.coons.D1, CURVE_ARC, N, Y, c);
   return p;
 }
 
@@ -387,27 +398,27 @@ static void test_normals(const char *name, const Patch *p)
     eu = fmax(eu, fabs(nrm(n) - 1.0));
     ec = fmax(ec, fabs(J - nrm(N)) / nrm(N));
     for (int i = 0; i < 3; i++) ec = fmax(ec, fabs(n[i] - p->sense * N[i] / nrm(N)));
-    if (p->type == PATCH_SPHERE)
-      for (int i = 0; i < 3; i++) an[i] = (x[i] - p->c[i]) / p->R;
-    else if (p->type == PATCH_CYLINDER) {
+    if (istype(p, "sphere"))
+      for (int i = 0; i < 3; i++) an[i] = (x[i] - p->rev.c[i]) / p->rev.R;
+    else if (istype(p, "cylinder")) {
       double d[3];
-      for (int i = 0; i < 3; i++) d[i] = x[i] - p->c[i];
-      const double h = dot(d, p->a);
-      for (int i = 0; i < 3; i++) an[i] = (d[i] - h * p->a[i]) / p->R;
-    } else if (p->type == PATCH_TORUS) {
+      for (int i = 0; i < 3; i++) d[i] = x[i] - p->rev.c[i];
+      const double h = dot(d, p->rev.a);
+      for (int i = 0; i < 3; i++) an[i] = (d[i] - h * p->rev.a[i]) / p->rev.R;
+    } else if (istype(p, "torus")) {
       double d[3], w[3];
-      for (int i = 0; i < 3; i++) d[i] = x[i] - p->c[i];
-      const double h = dot(d, p->a);
-      for (int i = 0; i < 3; i++) w[i] = d[i] - h * p->a[i];
+      for (int i = 0; i < 3; i++) d[i] = x[i] - p->rev.c[i];
+      const double h = dot(d, p->rev.a);
+      for (int i = 0; i < 3; i++) w[i] = d[i] - h * p->rev.a[i];
       unit(w);
-      for (int i = 0; i < 3; i++) an[i] = (d[i] - p->R * w[i]) / p->r;
+      for (int i = 0; i < 3; i++) an[i] = (d[i] - p->rev.R * w[i]) / p->rev.r;
     }
-    if (p->type == PATCH_SPHERE || p->type == PATCH_CYLINDER || p->type == PATCH_TORUS)
+    if (istype(p, "sphere") || istype(p, "cylinder") || istype(p, "torus"))
       for (int i = 0; i < 3; i++) ea = fmax(ea, fabs(n[i] - p->sense * an[i]));
   }
   TU_CHECK(eu < 1e-14, "%s: normal has unit length: max | |n| - 1 | = %.2e", name, eu);
   TU_CHECK(ec < 1e-12, "%s: normal = sense (x_xi x x_eta)/|x_xi x x_eta| and the returned Jacobian |x_xi x x_eta|: max error %.2e", name, ec);
-  if (p->type == PATCH_SPHERE || p->type == PATCH_CYLINDER || p->type == PATCH_TORUS) TU_CHECK(ea < 1e-14, "%s: normal = analytic sense (x - centre)/radius: max error %.2e", name, ea);
+  if (istype(p, "sphere") || istype(p, "cylinder") || istype(p, "torus")) TU_CHECK(ea < 1e-14, "%s: normal = analytic sense (x - centre)/radius: max error %.2e", name, ea);
 }
 
 /* ------------------------------------------------------------------ 3. Coons */
@@ -435,12 +446,12 @@ static void test_coons_shapes(void)
     for (int i = 0; i < 3; i++) P[k][i] = o[i] + ab[k][0] * e1[i] + ab[k][1] * e2[i];
   Patch q;
   memset(&q, 0, sizeof(q));
-  q.type  = PATCH_COONS;
+  settype(&q, "coons");
   q.sense = 1;
-  curve(&q.C0, CURVE_LINE, P[0], P[1], NULL);
-  curve(&q.C1, CURVE_LINE, P[2], P[3], NULL);
-  curve(&q.D0, CURVE_LINE, P[0], P[2], NULL);
-  curve(&q.D1, CURVE_LINE, P[1], P[3], NULL);
+  curve(&q.coons.C0, CURVE_LINE, P[0], P[1], NULL);
+  curve(&q.coons.C1, CURVE_LINE, P[2], P[3], NULL);
+  curve(&q.coons.D0, CURVE_LINE, P[0], P[2], NULL);
+  curve(&q.coons.D1, CURVE_LINE, P[1], P[3], NULL);
   double ex = 0, ed = 0;
   for (int k = 0; k < 100; k++) {
     const double u = uni(-0.1, 1.1), v = uni(-0.1, 1.1);
@@ -614,10 +625,10 @@ static void test_pole(void)
   Patch p;
   Tool  t;
   memset(&p, 0, sizeof(p));
-  p.type  = PATCH_SPHERE;
+  settype(&p, "sphere");
   p.sense = 1;
-  set3(p.c, 0, 0, 0);
-  p.R = 1.0;
+  set3(p.rev.c, 0, 0, 0);
+  p.rev.R = 1.0;
   frame(&p, 0, 0, 1, 1, 0, 0);
   const double ranges[3][4] = {
     {0,         deg(90),  0,        deg(90) }, /* quarter hemisphere, pole at a corner edge (th = 0) */
@@ -626,10 +637,10 @@ static void test_pole(void)
   };
   const char *names[3] = {"quarter hemisphere", "full cap", "south-pole patch"};
   for (int r = 0; r < 3; r++) {
-    p.t0 = ranges[r][0];
-    p.t1 = ranges[r][1];
-    p.s0 = ranges[r][2];
-    p.s1 = ranges[r][3];
+    p.rev.t0 = ranges[r][0];
+    p.rev.t1 = ranges[r][1];
+    p.rev.s0 = ranges[r][2];
+    p.rev.s1 = ranges[r][3];
     tool_init(&t, "pole", 1, &p);
     const double sh[3] = {0, 0, 0}, sgn = r == 2 ? -1.0 : 1.0;
     double       eax = 0, enx = 0, egp = 0, eb = 0, eo = 0, eg = 0;
@@ -685,27 +696,27 @@ static void test_multipatch(void)
   Tool         t;
   Patch        plane;
   memset(&plane, 0, sizeof(plane));
-  plane.type  = PATCH_PLANE;
+  settype(&plane, "plane");
   plane.sense = 1;
-  set3(plane.o, 0, 0, 0);
-  set3(plane.e1, 1, 0, 0);
-  set3(plane.e2, 0, 1, 0);
-  plane.u0 = 0;
-  plane.u1 = 1.5;
-  plane.v0 = 0;
-  plane.v1 = 1.5;
+  set3(plane.plane.o, 0, 0, 0);
+  set3(plane.plane.e1, 1, 0, 0);
+  set3(plane.plane.e2, 0, 1, 0);
+  plane.plane.u0 = 0;
+  plane.plane.u1 = 1.5;
+  plane.plane.v0 = 0;
+  plane.plane.v1 = 1.5;
 
   /* (a) the quarter hemisphere from two sphere patches split at ph = 45 degrees + the equator plane */
   for (int k = 0; k < 2; k++) {
     memset(&P[k], 0, sizeof(P[k]));
-    P[k].type  = PATCH_SPHERE;
+    settype(&P[k], "sphere");
     P[k].sense = 1;
-    P[k].R     = 1.0;
+    P[k].rev.R     = 1.0;
     frame(&P[k], 0, 0, 1, 1, 0, 0);
-    P[k].t0 = 0;
-    P[k].t1 = deg(90);
-    P[k].s0 = deg(45 * k);
-    P[k].s1 = deg(45 * (k + 1));
+    P[k].rev.t0 = 0;
+    P[k].rev.t1 = deg(90);
+    P[k].rev.s0 = deg(45 * k);
+    P[k].rev.s1 = deg(45 * (k + 1));
   }
   P[2] = plane;
   tool_init(&t, "split", 3, P);
@@ -741,7 +752,7 @@ static void test_multipatch(void)
   {
     Patch Q[2] = {P[0], plane};
     Tool  t2;
-    Q[1].u0 = Q[1].v0 = -1.5;
+    Q[1].plane.u0 = Q[1].plane.v0 = -1.5;
     tool_init(&t2, "open", 2, Q);
     const double th = deg(30), ph = deg(-5), y[3] = {1.2 * sin(th) * cos(ph), 1.2 * sin(th) * sin(ph), 1.2 * cos(th)};
     Projection   pr;
@@ -826,9 +837,9 @@ static void test_normal_derivative(const char *name, const Patch *p, double thic
     }
     /* relative to |dn| (of order 1/radius), absolute where dn vanishes (a cone held on its
        straight edge) */
-    emax = fmax(emax, p->type == PATCH_PLANE ? sqrt(num) : sqrt(num / fmax(den, 1e-6)));
+    emax = fmax(emax, istype(p, "plane") ? sqrt(num) : sqrt(num / fmax(den, 1e-6)));
   }
-  if (p->type == PATCH_PLANE) TU_CHECK(bad == 0 && emax < 1e-9, "%s: dn/dy = 0 and finite differences of the projected normal agree: max |FD| = %.2e", name, emax);
+  if (istype(p, "plane")) TU_CHECK(bad == 0 && emax < 1e-9, "%s: dn/dy = 0 and finite differences of the projected normal agree: max |FD| = %.2e", name, emax);
   else TU_CHECK(bad == 0 && emax < 1e-6, "%s: dn/dy vs central differences of the projected normal (%d interior, %d held on an edge): max rel. error %.2e", name, nint, nedge, emax);
 }
 
@@ -842,6 +853,7 @@ static void test_prepared(const Patch *a, const Patch *b, const Patch *c)
     Tool       t, tp;
     const double sh[3] = {0.1, -0.2, 0.05};
     PatchPrepare(&qp);
+    if (k == 0) TU_CHECK(qp.data != NULL, "PatchPrepare: a Coons patch holds its prepared frames and samples");
     tool_init(&t, "raw", 1, &q);
     tool_init(&tp, "prepared", 1, &qp);
     for (int j = 0; j < 200; j++) {
@@ -859,6 +871,7 @@ static void test_prepared(const Patch *a, const Patch *b, const Patch *c)
       diff += r != rp || (!r && (pr.patch != prp.patch || pr.xi != prp.xi || pr.eta != prp.eta || pr.gap != prp.gap || pr.interior != prp.interior));
       n++;
     }
+    PatchDestroy(&qp);
   }
   TU_CHECK(diff == 0, "PatchPrepare: %d points on 3 Coons patches, evaluation, normal and projection bit for bit those of the unprepared patch (%d differ)", n, diff);
 }
@@ -927,21 +940,21 @@ static PetscErrorCode test_options(void)
   TU_CHECK(n == 4 && !strcmp(T[0].name, "punch") && !strcmp(T[3].name, "quad") && T[0].npatch == 1 && T[1].npatch == 2, "options: %d tools (punch, die, roll, quad), patches %d %d %d %d", (int)n, T[0].npatch, T[1].npatch, T[2].npatch, T[3].npatch);
   {
     const Patch *s = &T[0].patch[0];
-    e              = fabs(s->R - 50.8) + fabs(s->c[2] + 50.8) + fabs(s->a[2] - 1) + fabs(s->e[0] - 1) + fabs(s->e[2]) + fabs(s->t1 - PI / 2) + fabs(s->s1 - PI / 2) + fabs(T[0].motion[2] - 30);
-    TU_CHECK(s->type == PATCH_SPHERE && s->sense == 1 && e < 1e-14, "options: sphere punch (axis 0,0,2 normalised, ref 1,0,1 orthonormalised, degrees to radians, motion): error %.1e", e);
+    e              = fabs(s->rev.R - 50.8) + fabs(s->rev.c[2] + 50.8) + fabs(s->rev.a[2] - 1) + fabs(s->rev.e[0] - 1) + fabs(s->rev.e[2]) + fabs(s->rev.t1 - PI / 2) + fabs(s->rev.s1 - PI / 2) + fabs(T[0].motion[2] - 30);
+    TU_CHECK(istype(s, "sphere") && s->sense == 1 && e < 1e-14, "options: sphere punch (axis 0,0,2 normalised, ref 1,0,1 orthonormalised, degrees to radians, motion): error %.1e", e);
     double sh[3];
     ToolShift(&T[0], 0.5, sh);
     TU_CHECK(sh[0] == 0 && sh[1] == 0 && sh[2] == 15, "ToolShift: lambda 0.5 of motion 0,0,30 = %g,%g,%g", sh[0], sh[1], sh[2]);
   }
   {
     const Patch *tr = &T[1].patch[0], *pl = &T[1].patch[1];
-    e = fabs(tr->R - 65.53) + fabs(tr->r - 6.35) + fabs(tr->s0 - PI) + fabs(tr->s1 - 1.5 * PI) + fabs(pl->e1[0] - 1) + fabs(pl->e2[1] - 1) + fabs(pl->e2[0]) + fabs(pl->u0 - 65.53) + fabs(pl->v1 - 100);
-    TU_CHECK(tr->type == PATCH_TORUS && tr->sense == -1 && pl->type == PATCH_PLANE && e < 1e-13, "options: die torus (sense -1) and plane (e2 orthonormalised against e1): error %.1e", e);
+    e = fabs(tr->rev.R - 65.53) + fabs(tr->rev.r - 6.35) + fabs(tr->rev.s0 - PI) + fabs(tr->rev.s1 - 1.5 * PI) + fabs(pl->plane.e1[0] - 1) + fabs(pl->plane.e2[1] - 1) + fabs(pl->plane.e2[0]) + fabs(pl->plane.u0 - 65.53) + fabs(pl->plane.v1 - 100);
+    TU_CHECK(istype(tr, "torus") && tr->sense == -1 && istype(pl, "plane") && e < 1e-13, "options: die torus (sense -1) and plane (e2 orthonormalised against e1): error %.1e", e);
   }
   {
     const Patch *cy = &T[2].patch[0], *co = &T[3].patch[0];
-    e = fabs(cy->R - 5) + fabs(cy->a[1] - 1) + fabs(cy->e[2] + 1) + fabs(cy->t0 + PI / 2) + fabs(cy->s1 - 21) + fabs(co->C0.c[2]) + fabs(co->C1.a[0] - 1.2) + fabs(co->D1.b[2] - 1);
-    TU_CHECK(cy->type == PATCH_CYLINDER && co->type == PATCH_COONS && co->C0.type == CURVE_ARC && co->D0.type == CURVE_LINE && e < 1e-14, "options: cylinder and coons data: error %.1e", e);
+    e = fabs(cy->rev.R - 5) + fabs(cy->rev.a[1] - 1) + fabs(cy->rev.e[2] + 1) + fabs(cy->rev.t0 + PI / 2) + fabs(cy->rev.s1 - 21) + fabs(co->coons.C0.c[2]) + fabs(co->coons.C1.a[0] - 1.2) + fabs(co->coons.D1.b[2] - 1);
+    TU_CHECK(istype(cy, "cylinder") && istype(co, "coons") && co->coons.C0.type == CURVE_ARC && co->coons.D0.type == CURVE_LINE && e < 1e-14, "options: cylinder and coons data: error %.1e", e);
   }
   /* bounding boxes contain every sampled point and are tight (margin below 1 % of the size) */
   for (PetscInt k = 0; k < n; k++) {
@@ -1047,6 +1060,125 @@ static PetscErrorCode test_options(void)
     }
     TU_CHECK(okc == 4, "options: the 4 reference sets of the bad-input cases are valid (%d of 4)", okc);
   }
+  PetscCall(PetscOptionsClear(NULL));
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------ 8b. travel, registry, view */
+
+/* ToolTravel: a straight ramp |lambda motion|; a path with a kink: the lengths of its pieces */
+static void test_travel(void)
+{
+  Tool         t;
+  Patch        q;
+  const double path[12] = {0, 0, 0, 0, 0.5, 3, 4, 0, 1, 3, 4, 12}; /* pieces of length 5 and 12 */
+  double       e = 0;
+  settype(&q, "plane");
+  tool_init(&t, "travel", 1, &q);
+  set3(t.motion, 3, -4, 12); /* |motion| = 13 */
+  {
+    const double lam[5] = {0, 0.25, 0.5, 1, -0.2}, want[5] = {0, 3.25, 6.5, 13, 2.6};
+    for (int k = 0; k < 5; k++) e = fmax(e, fabs(ToolTravel(&t, lam[k]) - want[k]));
+  }
+  TU_CHECK(e < 1e-14, "ToolTravel, straight ramp (motion 3,-4,12): |lambda| 13 at lambda 0, 0.25, 0.5, 1, -0.2: max error %.1e", e);
+  t.npath = 3;
+  memcpy(t.path, path, sizeof(path));
+  e = 0;
+  {
+    /* the first piece 5 long over loads [0, 0.5], the second (the kink: +z) 12 long over [0.5, 1] */
+    const double lam[7] = {0, 0.1, 0.5, 0.6, 0.75, 1, 1.5}, want[7] = {0, 1, 5, 5 + 2.4, 5 + 6, 17, 17};
+    for (int k = 0; k < 7; k++) e = fmax(e, fabs(ToolTravel(&t, lam[k]) - want[k]));
+  }
+  {
+    double sh[3];
+    ToolShift(&t, 0.75, sh);
+    e = fmax(e, fabs(sh[0] - 3) + fabs(sh[1] - 4) + fabs(sh[2] - 6));
+  }
+  TU_CHECK(e < 1e-14, "ToolTravel, path 0:(0,0,0) 0.5:(3,4,0) 1:(3,4,12): 0, 1, 5, 7.4, 11, 17 at loads 0, 0.1, 0.5, 0.6, 0.75, 1, held (17) at 1.5: max error %.1e", e);
+  t.npath = 2; /* a path ending at load 0.5: held after it */
+  TU_CHECK(ToolTravel(&t, 0.9) == 5.0 && ToolTravel(&t, 0.5) == 5.0, "ToolTravel: a path ending at load 0.5 holds its length 5 after it (%g at 0.9)", ToolTravel(&t, 0.9));
+}
+
+/* a type registered at run time: a plane under another name (the registry, not the files, decides
+   which option values are types) */
+static PetscErrorCode CreateSlab(Patch *p)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PatchSetType(p, "plane"));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode test_registry(void)
+{
+  const char    *pla = "-tool_names t -tool_t_patches 1 -tool_t_patch0_origin 0,0,0 -tool_t_patch0_e1 1,0,0 -tool_t_patch0_e2 0,1,0 -tool_t_patch0_range 0,1,0,1 -tool_t_patch0_type ";
+  char           buf[1024];
+  PetscInt       n = -1;
+  Tool          *T = NULL;
+  PetscErrorCode ierr;
+  Patch          p;
+
+  PetscFunctionBeginUser;
+  /* an unknown type: a one-line error naming the option, its value and the registered types */
+  snprintf(buf, sizeof(buf), "%sslab", pla);
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, buf));
+  errmsg[0] = 0;
+  PetscCall(PetscPushErrorHandler(Capture, NULL));
+  ierr = ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(ToolsDestroy(n, &T));
+  TU_CHECK(ierr != 0 && !strcmp(errmsg, "-tool_t_patch0_type slab: unknown patch type (use plane, sphere, cylinder, torus or coons)"), "registry: an unknown patch type is refused with one line naming the option: \"%s\"", errmsg);
+  memset(&p, 0, sizeof(p));
+  PetscCall(PetscPushErrorHandler(Capture, NULL));
+  ierr = PatchSetType(&p, "slab");
+  PetscCall(PetscPopErrorHandler());
+  TU_CHECK(ierr != 0 && strstr(errmsg, "unknown patch type 'slab'") && !strchr(errmsg, '\n'), "registry: PatchSetType with an unregistered name fails: \"%s\"", errmsg);
+  /* registered, the name is a type */
+  PetscCall(PatchRegister("slab", CreateSlab));
+  PetscCall(PetscOptionsInsertString(NULL, buf));
+  PetscCall(ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T));
+  {
+    Projection pr;
+    const double sh[3] = {0, 0, 0}, y[3] = {0.3, 0.4, 0.25};
+    const int    r     = ToolProject(&T[0], sh, y, PETSC_INFINITY, &pr);
+    TU_CHECK(n == 1 && istype(&T[0].patch[0], "plane") && r == 0 && pr.gap == 0.25 && pr.xi == 0.3 && pr.eta == 0.4, "registry: a type registered at run time (\"slab\", a plane) builds from options and projects (gap %g)", pr.gap);
+  }
+  PetscCall(ToolsDestroy(n, &T));
+  PetscCall(PetscOptionsClear(NULL));
+  PetscFunctionReturn(0);
+}
+
+/* ToolView: one line for the tool and one per patch */
+static PetscErrorCode test_view(void)
+{
+  char        path[PETSC_MAX_PATH_LEN], line[1024];
+  PetscViewer v;
+  PetscInt    n;
+  Tool       *T;
+  int         nl = 0, ok = 1, np = 0;
+  FILE       *fp;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, good_options));
+  PetscCall(ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T));
+  snprintf(path, sizeof(path), "/tmp/atrito_test_tool_view_%ld.txt", (long)getpid());
+  PetscCall(PetscViewerASCIIOpen(PETSC_COMM_SELF, path, &v));
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCall(ToolView(&T[k], v));
+    np += T[k].npatch;
+  }
+  PetscCall(PetscViewerDestroy(&v));
+  fp = fopen(path, "r");
+  while (fp && fgets(line, sizeof(line), fp)) {
+    nl++;
+    if (nl == 1) ok = ok && strstr(line, "Tool punch: 1 patch, motion 0.,0.,30., travel at load 1 30.") != NULL;
+    if (nl == 2) ok = ok && strstr(line, "patch 0: sphere, sense 1: centre 0.,0.,-50.8") && strstr(line, "radius 50.8") && strstr(line, "range 0.,90.,0.,90.");
+  }
+  if (fp) fclose(fp);
+  remove(path);
+  TU_CHECK(fp && ok && nl == n + np, "ToolView: %d lines for %d tools and %d patches (a line per tool, then per patch: type, sense, parameters in the options' units)", nl, (int)n, np);
+  PetscCall(ToolsDestroy(n, &T));
   PetscCall(PetscOptionsClear(NULL));
   PetscFunctionReturn(0);
 }
@@ -1236,6 +1368,8 @@ int main(int argc, char **argv)
     test_normal_derivative("dn/dy coons (2 arcs, 2 lines)", &cc, 0.3, 1);
     test_normal_derivative("dn/dy coons (2 arcs, 2 lines), prepared", &ccp, 0.3, 1);
     test_normal_derivative("dn/dy coons (spherical quad), prepared", &ocp, 0.3, 1);
+    PatchDestroy(&ccp);
+    PatchDestroy(&ocp);
   }
   {
     /* a point above the collapsed side of the octant: projected onto the pole, where the normal has
@@ -1252,6 +1386,9 @@ int main(int argc, char **argv)
 
   /* 8. options */
   PetscCall(test_options());
+  test_travel();
+  PetscCall(test_registry());
+  PetscCall(test_view());
 
   /* 9. the examples of doc/tools.md */
   PetscCall(test_doc_examples());
@@ -1261,6 +1398,7 @@ int main(int argc, char **argv)
     Patch op = oct[0];
     PatchPrepare(&op);
     printf("# timing: ToolProject %.0f ns/call (sphere patch), %.0f ns/call (torus patch), %.0f ns/call (coons patch, 4 great-circle arcs), %.0f ns/call (the same, prepared), %.0f ns/call (coons, 2 arcs + 2 lines)\n", project_ns(&sp, 0.3), project_ns(&to, 0.2), project_ns(&oct[0], 0.3), project_ns(&op, 0.3), project_ns(&cc, 0.3));
+    PatchDestroy(&op);
   }
 
   PetscCall(PetscFinalize());
