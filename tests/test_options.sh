@@ -22,7 +22,7 @@ groups=$(grep -cE '^(Mesh|Material|Element|Boundary condition|Contact|Tool|Load 
   not_ok "-help: exit $rc, missing:$miss, $groups groups, output dir $( [ -e "$OUT/help" ] && echo written || echo absent)"
 
 # 2. a bare call: one usage line, non-zero exit
-(cd "$OUT" && $MPI 1 "$OLDPWD/$A" >bare.out 2>bare.err); rc=$?
+(cd "$OUT" && "$OLDPWD/$A" >bare.out 2>bare.err); rc=$?
 [ $rc -ne 0 ] && [ "$(wc -l <"$OUT/bare.err")" -eq 1 ] && grep -q '^atrito: error: .*usage: ' "$OUT/bare.err" && [ ! -e "$OUT/out" ] &&
   ok "a bare call prints one usage line and exits $rc, running nothing" ||
   { not_ok "bare call: exit $rc"; cat "$OUT/bare.err" | indent; }
@@ -39,7 +39,7 @@ spell() { # spell NP EXPECTED-SUGGESTION ARGS...
 }
 spell 1 -contact_friction -options_file cases/tension_bar.opts -contact_fricton 0.1
 spell 2 -bc_pull_values -options_file cases/tension_bar.opts -bc_pul_values 2
-spell 1 -material_swift_n -options_file cases/tension_bar.opts -material_swift_m 0.2
+spell 1 -material_hardening_modulus -options_file cases/tension_bar.opts -material_hardening_modulos 10
 spell 1 -load_max_cuts -options_file cases/tension_bar.opts -load_max_cut 3
 spell 2 -tool_punch_motion -options_file cases/hemisphere_friction_analytic.opts -tool_punch_moton 0,0,1
 
