@@ -35,25 +35,25 @@ $(DEPS_STAMP):
 
 deps: $(DEPS_STAMP)
 
-build/%.o: src/%.c $(wildcard include/*.h) | $(DEPS_STAMP)
+build/%.o: src/%.c $(wildcard include/*.h src/*/*.h) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
 
 build/lib.a: $(LIB_OBJ)
-	$(AR) rcs $@ $^
+	rm -f $@ && $(AR) rcs $@ $^
 
 bin/atrito: build/main.o build/lib.a | $(DEPS_STAMP)
 	@mkdir -p bin
 	$(CC) $(CFLAGS) $^ -o $@ $(LDLIBS)
 
-bin/test_%: tests/test_%.c tests/testutil.h build/lib.a $(wildcard include/*.h) | $(DEPS_STAMP)
+bin/test_%: tests/test_%.c tests/testutil.h build/lib.a $(wildcard include/*.h src/*/*.h) | $(DEPS_STAMP)
 	@mkdir -p bin
 	$(CC) $(CPPFLAGS) $(CFLAGS) $< build/lib.a -o $@ $(LDLIBS)
 
 # the unit-test programs with AddressSanitizer and UndefinedBehaviorSanitizer (tests/test_memory.sh)
 SAN_FLAGS := -O1 -g -std=c11 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 SAN_OBJ   := $(LIB_SRC:src/%.c=build-san/%.o)
-build-san/%.o: src/%.c $(wildcard include/*.h) | $(DEPS_STAMP)
+build-san/%.o: src/%.c $(wildcard include/*.h src/*/*.h) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(SAN_FLAGS) -c $< -o $@
 bin-san/test_%: tests/test_%.c tests/testutil.h $(SAN_OBJ) | $(DEPS_STAMP)

@@ -65,8 +65,8 @@ KERNEL_C = r"""
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "fe.h"
-#include "material.h"
+#include "element_hex8.h"
+#include "material_j2.h"
 
 #define M 256 /* distinct elements cycled through */
 
@@ -78,14 +78,15 @@ static double now(void)
 }
 
 static double X[M][8][3], U1[M][8][3], U2[M][8][3], Ue[M][8][3];
-static double H0[M][HEX8_NQP][MAT_NHIST], H1[M][HEX8_NQP][MAT_NHIST], Ht[M][HEX8_NQP][MAT_NHIST];
+static double H0[M][HEX8_NQP][J2_NHIST], H1[M][HEX8_NQP][J2_NHIST], Ht[M][HEX8_NQP][J2_NHIST];
 
 int main(int argc, char **argv)
 {
   const int      reps   = argc > 1 ? atoi(argv[1]) : 5;
   const double   target = argc > 2 ? atof(argv[2]) : 0.3; /* seconds per repetition */
-  MaterialParams mp;
-  ElementOptions eo = {1}; /* F-bar, as in the application's default */
+  J2Params       mp;
+  MaterialKernel mk;
+  Hex8Options    eo = {1}; /* F-bar, as in the application's default */
   double         fe[24], ke[24 * 24], sink = 0;
   unsigned       seed = 12345;
 
@@ -93,7 +94,8 @@ int main(int argc, char **argv)
   memset(&mp, 0, sizeof(mp));
   mp.E = 69004; mp.nu = 0.3; mp.law = HARDENING_SWIFT;
   mp.swK = 589; mp.sweps0 = 1e-4; mp.swn = 0.216; mp.rtol = 1e-12; mp.maxit = 50;
-  if (MaterialParamsSetup(&mp)) return 2;
+  if (J2ParamsSetup(&mp)) return 2;
+  J2KernelInit(&mp, &mk); /* the J2 model through the material interface, as the application calls it */
 
   /* elements: 0.2 x 0.1 x 0.2 bricks with perturbed corners; deformation: shear + stretch */
   for (int e = 0; e < M; e++) {
@@ -118,16 +120,16 @@ int main(int argc, char **argv)
         Ue[e][a][i] = 1e-3 * r * s; /* reference: elastic */
       }
     }
-    for (int q = 0; q < HEX8_NQP; q++) MaterialHistoryInit(H0[e][q]);
+    for (int q = 0; q < HEX8_NQP; q++) J2HistoryInit(H0[e][q]);
   }
   int minpl = 8, minel = 8;
   for (int e = 0; e < M; e++) {
     ElementInfo info;
-    if (hex8_element(&mp, &eo, X[e], U1[e], H0[e], fe, NULL, H1[e], &info) != MAT_OK) return 3;
-    if (hex8_element(&mp, &eo, X[e], U2[e], H1[e], fe, NULL, Ht[e], &info) != MAT_OK) return 3;
+    if (hex8_element(&eo, &mk, X[e], U1[e], &H0[e][0][0], fe, NULL, &H1[e][0][0], &info) != MAT_OK) return 3;
+    if (hex8_element(&eo, &mk, X[e], U2[e], &H1[e][0][0], fe, NULL, &Ht[e][0][0], &info) != MAT_OK) return 3;
     if (info.nplastic < minpl) minpl = info.nplastic;
-    if (e == 0) printf("state committed_ep %.4e trial_ep %.4e\n", H1[0][0][MAT_HIST_EP], Ht[0][0][MAT_HIST_EP]);
-    if (hex8_element(&mp, &eo, X[e], Ue[e], H0[e], fe, NULL, Ht[e], &info) != MAT_OK) return 3;
+    if (e == 0) printf("state committed_ep %.4e trial_ep %.4e\n", H1[0][0][J2_HIST_EP], Ht[0][0][J2_HIST_EP]);
+    if (hex8_element(&eo, &mk, X[e], Ue[e], &H0[e][0][0], fe, NULL, &Ht[e][0][0], &info) != MAT_OK) return 3;
     if (8 - info.nplastic < minel) minel = 8 - info.nplastic;
   }
   printf("plastic_gauss_points_min %d\nelastic_gauss_points_min %d\n", minpl, minel);
@@ -136,13 +138,13 @@ int main(int argc, char **argv)
   for (int mode = 0; mode < 4; mode++) {
     const int jac = mode & 1, plastic = mode < 2;
     double(*U)[8][3]                  = plastic ? U2 : Ue;
-    double(*Hn)[HEX8_NQP][MAT_NHIST]  = plastic ? H1 : H0;
+    double(*Hn)[HEX8_NQP][J2_NHIST]   = plastic ? H1 : H0;
     long passes = 1;
     for (;;) { /* calibration, also the warm-up */
       const double t0 = now();
       for (long p = 0; p < passes; p++)
         for (int e = 0; e < M; e++) {
-          hex8_element(&mp, &eo, X[e], U[e], (const double(*)[MAT_NHIST])Hn[e], fe, jac ? ke : NULL, Ht[e], NULL);
+          hex8_element(&eo, &mk, X[e], U[e], &Hn[e][0][0], fe, jac ? ke : NULL, &Ht[e][0][0], NULL);
           sink += fe[e % 24] + (jac ? ke[(7 * e) % 576] : 0);
         }
       const double dt = now() - t0;
@@ -156,7 +158,7 @@ int main(int argc, char **argv)
       const double t0 = now();
       for (long p = 0; p < passes; p++)
         for (int e = 0; e < M; e++) {
-          hex8_element(&mp, &eo, X[e], U[e], (const double(*)[MAT_NHIST])Hn[e], fe, jac ? ke : NULL, Ht[e], NULL);
+          hex8_element(&eo, &mk, X[e], U[e], &Hn[e][0][0], fe, jac ? ke : NULL, &Ht[e][0][0], NULL);
           sink += fe[e % 24] + (jac ? ke[(7 * e) % 576] : 0);
         }
       const double dt = now() - t0;
