@@ -13,9 +13,13 @@
 
 /* records PetscOptionsObject's prefix + opt (opt starts with '-'); never fails */
 void AtritoOptionsRecord(const PetscOptionItems *items, const char opt[]);
-/* Refuses (collectively, before any work) an option that was set but not used whose first word
-   (up to the first '_') is the first word of an option the code knows, naming the closest
-   known option: -contact_fricton -> "did you mean -contact_friction?". */
+/* Before any work, for every option that was set but not used and whose first word (up to the
+   first '_') is the first word of an option the code knows: when a known option lies within
+   ATRITO_OPTIONS_MISSPELT edits (insertions, deletions, substitutions, swaps of neighbours), the
+   run is refused (collectively), naming it: -contact_fricton -> "did you mean
+   -contact_friction?"; otherwise (an option of a patch type, material or condition this case
+   does not have) a warning is printed at once, and again at the end with the other unused ones. */
+#define ATRITO_OPTIONS_MISSPELT 2
 PetscErrorCode AtritoOptionsCheckUnknown(MPI_Comm comm);
 /* The closest recorded option to name (Levenshtein distance); NULL when none is recorded */
 const char *AtritoOptionsClosest(const char name[]);

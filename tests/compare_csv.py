@@ -9,7 +9,7 @@ matching the columns BY NAME (their order does not matter).
     slip: every reference entry an integer) must be equal;
   * numeric columns: |new - ref| <= rtol |ref| + floor, with the floor
         max(atol, rtol * S),  S = max |ref| over the column,
-    and for force columns (names ending in _fx, _fy, _fz, and force, force_full) S is the largest
+    and for force columns (names ending in _fx, _fy, _fz, and force, force_full, fx, fy, fz, force_normal, force_tangential) S is the largest
     force magnitude of the file, so that a reaction component that is zero up to round-off is
     compared on the scale of the forces it is the round-off of.
   * --int-tol newton_its=1 lets an integer column differ by up to 1: a Newton solve that ends
@@ -51,7 +51,7 @@ def is_int(x):
 
 
 def is_force(c):
-    return c.endswith(("_fx", "_fy", "_fz")) or c in ("force", "force_full")
+    return c.endswith(("_fx", "_fy", "_fz")) or c in ("force", "force_full", "fx", "fy", "fz", "force_normal", "force_tangential")
 
 
 def compare(ref_path, new_path, rtol, atol, allow_missing, skip, int_tol=None):

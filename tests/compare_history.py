@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Compare two CSV histories (history.csv, contact.csv) row by row. Text columns must be equal;
 every numeric column must agree to DIGITS significant digits relative to its largest magnitude.
-Force columns (*_fx, *_fy, *_fz, force, force_full) use at least 1e-3 of the largest force of the
+Force columns (*_fx, *_fy, *_fz, force, force_full, fx, fy, fz, force_normal, force_tangential) use at least 1e-3 of the largest force of the
 file as their scale, so that a component that is zero up to round-off compares as zero. Residual
 norms and Newton iteration counts (which round-off can change by one near the tolerance) are not
 compared.
@@ -27,7 +27,7 @@ def main():
     if ok:
         cols = [c for c in ra[0].keys() if not c.startswith("residual") and c != "newton_its"]
         numeric = [c for c in cols if all(num(r[c]) is not None for r in ra)]
-        isforce = lambda c: c.endswith(("_fx", "_fy", "_fz")) or c in ("force", "force_full")
+        isforce = lambda c: c.endswith(("_fx", "_fy", "_fz")) or c in ("force", "force_full", "fx", "fy", "fz", "force_normal", "force_tangential")
         gmax = max([abs(num(r[c])) for r in ra for c in numeric if isforce(c)] + [1e-300])
         for c in cols:
             if c not in numeric:

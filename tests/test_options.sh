@@ -43,6 +43,14 @@ spell 1 -material_hardening_modulus -options_file cases/tension_bar.opts -materi
 spell 1 -load_max_cuts -options_file cases/tension_bar.opts -load_max_cut 3
 spell 2 -tool_punch_motion -options_file cases/hemisphere_friction_analytic.opts -tool_punch_moton 0,0,1
 
+# an option far from every known name (one of a tool, patch type or condition this case does not
+# have): warned before the run starts, not refused
+atrito 1 farname -options_file cases/tension_bar.opts -load_steps 2 -output_interval 0 -contact_penalty 5 &&
+  { w=$(grep -n 'WARNING: option -contact_penalty is read by no part of this case' "$OUT/farname.log" | head -1 | cut -d: -f1)
+    s=$(grep -n '^step ' "$OUT/farname.log" | head -1 | cut -d: -f1)
+    [ -n "$w" ] && [ -n "$s" ] && [ "$w" -lt "$s" ] && ok "an option no part of the case reads, far from every known name: warned before the first step, the run goes on" ||
+      not_ok "-contact_penalty: warning line ${w:-none}, first step line ${s:-none}"; }
+
 # 4. nothing written into the options database: the Gmsh reader's regions and MUMPS's scaling
 atrito 1 gmshopts -mesh_file tests/data/two_hex.msh -bc_names fix,pull -bc_fix_set left -bc_pull_set right -bc_fix_components x,y,z -bc_pull_components x -bc_pull_values 0.2 -load_steps 2 -output_interval 0 -options_view &&
   { n=$(grep -cE 'dm_plex_gmsh_use_regions|mat_mumps_icntl_8' "$OUT/gmshopts.log")

@@ -40,7 +40,7 @@ static size_t Distance(const char *a, const char *b)
   return d[la][lb];
 }
 
-const char *AtritoOptionsClosest(const char name[])
+static const char *Closest(const char name[], size_t *dist)
 {
   const char *best = NULL;
   size_t      dbest = (size_t)-1;
@@ -52,7 +52,14 @@ const char *AtritoOptionsClosest(const char name[])
       best  = known[i];
     }
   }
+  *dist = dbest;
   return best;
+}
+
+const char *AtritoOptionsClosest(const char name[])
+{
+  size_t d;
+  return Closest(name, &d);
 }
 
 /* the first word of an option name: "-contact_friction" -> "contact" (length returned) */
@@ -83,13 +90,18 @@ PetscErrorCode AtritoOptionsCheckUnknown(MPI_Comm comm)
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsLeftGet(NULL, &N, &names, &values));
-  for (PetscInt i = 0; i < N && !msg[0]; i++) {
-    char full[NAME_LEN];
+  for (PetscInt i = 0; i < N; i++) {
+    char        full[NAME_LEN];
+    size_t      d;
+    const char *c;
     snprintf(full, sizeof(full), "-%s", names[i]);
     if (!KnownPrefix(full)) continue;
-    const char *c = AtritoOptionsClosest(full);
-    PetscCall(PetscSNPrintf(msg, sizeof(msg), "unknown option %s%s%s", full, c ? " (did you mean " : "", c ? c : ""));
-    if (c) PetscCall(PetscStrlcat(msg, "?)", sizeof(msg)));
+    c = Closest(full, &d);
+    if (c && d <= ATRITO_OPTIONS_MISSPELT) {
+      /* a misspelling: refused */
+      if (!msg[0]) PetscCall(PetscSNPrintf(msg, sizeof(msg), "unknown option %s (did you mean %s?)", full, c));
+    } else /* an option of another type, tool or condition than this case has: warned now and at the end */
+      PetscCall(PetscPrintf(comm, "WARNING: option %s is read by no part of this case%s%s%s\n", full, c ? " (closest: " : "", c ? c : "", c ? ")" : ""));
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &N, &names, &values));
   PetscCheck(!msg[0], comm, PETSC_ERR_USER_INPUT, "%s", msg);
