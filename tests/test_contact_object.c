@@ -1,0 +1,140 @@
+/* The contact object (include/contact.h) on a small box mesh pressed onto a rigid plane: nodal
+   forces against the closed form K_N times the penetration, the per-tool results (a node touching
+   with zero force is not counted as pressed; frictionless contact is neither stick nor slip), and
+   the chattering check for nodes entering and leaving contact with a significant force. Runs on
+   1 and 2 ranks: every count is over all ranks. */
+#include <petscsys.h>
+#include "testutil.h"
+#include "mesh.h"
+#include "bc.h"
+#include "contact.h"
+
+static PetscMPIInt rank;
+
+typedef struct {
+  MeshOptions mo;
+  Mesh        m;
+  BCs         bcs;
+  Contact     c;
+} Setup;
+
+static PetscErrorCode SetUp(Setup *s, PetscReal mu)
+{
+  char      buf[32];
+  PetscInt *cmask;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(buf, sizeof(buf), "%g", (double)mu));
+  PetscCall(PetscOptionsSetValue(NULL, "-contact_friction", buf));
+  PetscCall(PetscMemzero(s, sizeof(*s)));
+  PetscCall(MeshSetFromOptions(PETSC_COMM_WORLD, &s->mo));
+  PetscCall(BCSetFromOptions(PETSC_COMM_WORLD, &s->bcs));
+  PetscCall(ContactCreate(PETSC_COMM_WORLD, &s->c));
+  PetscCall(ContactSetFromOptions(s->c));
+  PetscCall(MeshCreate(PETSC_COMM_WORLD, &s->mo, &s->m));
+  PetscCall(BCComputeMask(&s->bcs, &s->m, &cmask));
+  PetscCall(MeshSetConstraints(&s->m, cmask));
+  PetscCall(PetscFree(cmask));
+  PetscCall(BCSetUp(&s->bcs, &s->m));
+  PetscCall(ContactSetUp(s->c, &s->m));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TearDown(Setup *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ContactDestroy(&s->c));
+  PetscCall(BCDestroy(&s->bcs));
+  PetscCall(MeshDestroy(&s->m));
+  PetscFunctionReturn(0);
+}
+
+/* local displacements: every bottom node (z = 0) moved by dz, except those with x = 1, moved by dz1 */
+static void Displace(const Mesh *m, PetscScalar *u, double dz, double dz1)
+{
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscReal *X = m->X + 3 * v;
+    for (int k = 0; k < 3; k++) u[m->vloff[v] + k] = 0;
+    if (X[2] == 0) u[m->vloff[v] + 2] = X[0] == 1 ? dz1 : dz;
+  }
+}
+
+int main(int argc, char **argv)
+{
+  Setup             s;
+  PetscScalar      *u, *f;
+  PetscInt          nfail, nch, node, nloc;
+  ContactToolResult r;
+  const double      KN = 100, pen = 0.01;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  PetscCall(PetscOptionsInsertString(NULL, "-mesh_type box -box_cells 2,2,1 -contact_set zmin -contact_penalty_normal 100 -contact_penalty_tangential 10 "
+                                           "-tool_names plane -tool_plane_patches 1 -tool_plane_patch0_type plane -tool_plane_patch0_origin 0,0,0 "
+                                           "-tool_plane_patch0_e1 1,0,0 -tool_plane_patch0_e2 0,1,0 -tool_plane_patch0_range -2,3,-2,3"));
+
+  for (int pass = 0; pass < 2; pass++) {
+    const PetscReal mu = pass ? 0.3 : 0.0;
+    PetscCall(SetUp(&s, mu));
+    nloc = 3 * s.m.nv;
+    PetscCall(PetscCalloc2(nloc, &u, nloc, &f));
+
+    /* every bottom node pressed by pen, those at x = 1 touching without penetration */
+    Displace(&s.m, u, -pen, 0);
+    PetscCall(ContactSeed(s.c, u, 0, PETSC_TRUE));
+    PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+    {
+      double err = 0;
+      int    pressed = 0;
+      for (PetscInt v = 0; v < s.m.nv; v++)
+        if (s.m.X[3 * v + 2] == 0 && s.m.X[3 * v] != 1 && s.m.vowned[v]) {
+          err = PetscMax(err, fabs(PetscRealPart(f[s.m.vloff[v] + 2]) + KN * pen) / (KN * pen));
+          pressed++;
+        }
+      CHECK_ALL(nfail == 0 && err < 1e-12, "mu %g: residual -K_N g at every pressed node (%d on rank %d), relative error %.1e", (double)mu, pressed, rank, err);
+    }
+    PetscCall(ContactRecordActive(s.c));
+    PetscCall(ContactCommit(s.c, 0));
+    PetscCall(ContactGetToolResult(s.c, 0, 0, &r));
+    /* 9 bottom nodes: 6 pressed (x < 1), 3 touching at x = 1 with zero force */
+    CHECK_ALL(r.active == 6, "mu %g: 6 nodes pressed, the 3 touching without force not counted (got %d)", (double)mu, (int)r.active);
+    CHECK_ALL(fabs(r.f[2] - 6 * KN * pen) < 1e-12 && fabs(r.fn - 6 * KN * pen) < 1e-12 && fabs(r.ft) < 1e-12, "mu %g: resultant (%g, %g, %g), normal %g, tangential %g", (double)mu, r.f[0], r.f[1], r.f[2], r.fn, r.ft);
+    if (mu == 0) CHECK_ALL(r.stick == 0 && r.slip == 0, "frictionless contact counted as neither stick nor slip (stick %d, slip %d)", (int)r.stick, (int)r.slip);
+    else CHECK_ALL(r.stick == 6 && r.slip == 0, "with friction and no slip: 6 nodes sticking (stick %d, slip %d)", (int)r.stick, (int)r.slip);
+
+    /* the next Newton iterate: the nodes at x = 1 enter with a significant force, the others stay */
+    Displace(&s.m, u, -pen, -pen);
+    PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+    PetscCall(ContactChatter(s.c, &nch, &node));
+    CHECK_ALL(nch == 0, "mu %g: nodes already touching (active, zero force) that become pressed do not change the active set: %d", (double)mu, (int)nch);
+    PetscCall(ContactRecordActive(s.c));
+    /* the next iterate: the nodes at x = 1 leave contact; they carried a significant force */
+    Displace(&s.m, u, -pen, 0.01);
+    PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+    PetscCall(ContactChatter(s.c, &nch, &node));
+    CHECK_ALL(nch == 3, "mu %g: 3 nodes leaving contact with a significant force are seen by the chattering check (got %d, smallest node id %d)", (double)mu, (int)nch, (int)node);
+    PetscCall(ContactRecordActive(s.c));
+    /* and enter again */
+    Displace(&s.m, u, -pen, -pen);
+    PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+    PetscCall(ContactChatter(s.c, &nch, &node));
+    CHECK_ALL(nch == 3, "mu %g: 3 nodes entering contact with a significant force are seen (got %d)", (double)mu, (int)nch);
+    /* a node leaving with a negligible force (1e-6 of the largest) is not chattering */
+    PetscCall(ContactRecordActive(s.c));
+    Displace(&s.m, u, -pen, 0.01);
+    PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+    PetscCall(ContactRecordActive(s.c));
+    Displace(&s.m, u, -pen, -1e-6 * pen);
+    PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+    PetscCall(ContactRecordActive(s.c));
+    Displace(&s.m, u, -pen, 0.01);
+    PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+    PetscCall(ContactChatter(s.c, &nch, &node));
+    CHECK_ALL(nch == 0, "mu %g: nodes leaving with a force of 1e-6 of the largest are not chattering (got %d)", (double)mu, (int)nch);
+
+    PetscCall(PetscFree2(u, f));
+    PetscCall(TearDown(&s));
+  }
+  PetscCall(PetscFinalize());
+  TU_RETURN();
+}
