@@ -30,6 +30,7 @@ run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit
 run build           bash tests/test_build.sh
 run material        bin/test_material
 run fe              bin/test_fe
+run eas             bin/test_eas
 run meshgen         bin/test_meshgen
 run tool            bin/test_tool
 run contact-kernels bin/test_contact
