@@ -43,6 +43,7 @@ run contact         bash tests/test_contact.sh
 run benchmark       bash tests/test_benchmark.sh
 run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh
+run eas-solver      bash tests/test_eas.sh
 run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh
 run memory          bash tests/test_memory.sh
