@@ -30,6 +30,7 @@ run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit
 run build           bash tests/test_build.sh
 run material        bin/test_material
 run fe              bin/test_fe
+run eas             bin/test_eas
 run meshgen         bin/test_meshgen
 run tool            bin/test_tool
 run contact-kernels bin/test_contact
@@ -44,6 +45,7 @@ run contact         bash tests/test_contact.sh
 run benchmark       bash tests/test_benchmark.sh
 run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh
+run eas-solver      bash tests/test_eas.sh
 run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh
 run memory          bash tests/test_memory.sh

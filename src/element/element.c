@@ -31,6 +31,7 @@ static PetscErrorCode ElementFinalizePackage(void)
 
 /* the create functions of the formulations (src/element/<name>.c) */
 PETSC_INTERN PetscErrorCode ElementCreate_Hex8(Element);
+PETSC_INTERN PetscErrorCode ElementCreate_Hex8EAS(Element);
 
 static PetscErrorCode ElementRegisterAll(void)
 {
@@ -40,6 +41,7 @@ static PetscErrorCode ElementRegisterAll(void)
   PetscCall(PetscRegisterFinalize(ElementFinalizePackage));
   /* one line per element formulation */
   PetscCall(ElementRegister("hex8", ElementCreate_Hex8));
+  PetscCall(ElementRegister("hex8_eas", ElementCreate_Hex8EAS));
   PetscFunctionReturn(0);
 }
 

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The hexahedron with incompatible modes (-element_type hex8_eas) in the solver: a thin cantilever
+# plate with one element through the thickness against beam theory (and the F-bar hex8 beside it),
+# upsetting of a cube to 30 % of its height (homogeneous: the exact force of the F-bar hex8),
+# -snes_test_jacobian in the plastic regime, the same history on 1 and 2 ranks, and a restart
+# from a checkpoint (the enhanced parameters are element state in the checkpoint).
+set -u
+cd "$(dirname "$0")/.."
+. tests/lib.sh
+OUT=$(test_out eas)
+
+# 1. cantilever plate L/t = 100, 20 x 1 x 1 elements, tip deflection 0.1 (plane strain in y):
+#    P = 3 E' I d / L^3, E' = E / (1 - nu^2), I = b t^3 / 12
+P=$($PY -c "E=200000/(1-0.3**2); print(3*E*5/12*0.1/100**3)")
+for el in hex8_eas hex8; do atrito 1 plate_$el -options_file cases/cantilever_plate.opts -element_type $el; done
+r=$(tail -n 1 "$OUT/plate_hex8_eas/history.csv" | awk -F, -v p="$P" '{printf "%.5f", -$NF / p}')
+rf=$(tail -n 1 "$OUT/plate_hex8/history.csv" | awk -F, -v p="$P" '{printf "%.3f", -$NF / p}')
+awk -v r="$r" 'BEGIN { exit !(r > 0.98 && r < 1.02) }' &&
+  ok "cantilever plate L/t = 100, one element through the thickness: tip force / beam theory = $r with hex8_eas (hex8 F-bar: $rf)" ||
+  not_ok "cantilever plate: tip force / beam theory = $r with hex8_eas (hex8 F-bar: $rf)"
+
+# 2. upsetting to 30 % of the height: every step converges, the force is the homogeneous one
+atrito 1 upset_eas -options_file cases/compression_block.opts -element_type hex8_eas &&
+  atrito 1 upset_fbar -options_file cases/compression_block.opts -element_type hex8 &&
+  compare "$OUT/upset_fbar/history.csv" "$OUT/upset_eas/history.csv" 8 "cube upset to 30 % of its height: hex8_eas force history = homogeneous (hex8 F-bar)"
+
+# 3. -snes_test_jacobian on a small plastic problem
+atrito 1 jac -options_file cases/clamped_beam.opts -box_cells 3,1,2 -load_steps 3 -output_interval 0 -element_type hex8_eas -snes_test_jacobian &&
+  pycheck snes_test_jacobian "$OUT/jac.log" 6 1e-6 "plastic, hex8_eas element"
+
+# 4. 1 and 2 ranks: the same history (10 digits)
+atrito 1 beam1 -options_file cases/clamped_beam.opts -output_interval 0 -element_type hex8_eas
+atrito 2 beam2 -options_file cases/clamped_beam.opts -output_interval 0 -element_type hex8_eas
+compare "$OUT/beam1/history.csv" "$OUT/beam2/history.csv" 10 "clamped beam with hex8_eas: np=1 and np=2"
+
+# 5. a stop after 5 steps and a restart from the checkpoint of step 4 (on 2 ranks): same history
+atrito_rc 1 rs -options_file cases/clamped_beam.opts -output_interval 0 -element_type hex8_eas -checkpoint_interval 2 -load_max_steps 5
+mv "$OUT/rs.log" "$OUT/rs1.log"
+atrito 2 rs -options_file cases/clamped_beam.opts -output_interval 0 -element_type hex8_eas -checkpoint_interval 2 -restart "$OUT/rs/checkpoint.h5" &&
+  { grep -q "restart from .*: step 4," "$OUT/rs.log" || not_ok "restart did not start from step 4"; } &&
+  compare "$OUT/beam1/history.csv" "$OUT/rs/history.csv" 10 "clamped beam with hex8_eas: stopped after 5 steps, restarted on 2 ranks"
