@@ -29,6 +29,7 @@ run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit
 
 run build           bash tests/test_build.sh
 run material        bin/test_material
+run hill48          bin/test_hill48
 run fe              bin/test_fe
 run meshgen         bin/test_meshgen
 run tool            bin/test_tool
