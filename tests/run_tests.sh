@@ -39,6 +39,7 @@ run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
 run lu-np1          mpiexec -n 1 bin/test_lu
 run lu-np2          mpiexec -n 2 bin/test_lu
 run solver          bash tests/test_solver.sh
+run hill48-solver   bash tests/test_hill48.sh
 run contact         bash tests/test_contact.sh
 run benchmark       bash tests/test_benchmark.sh
 run reference       bash tests/test_reference.sh
