@@ -17,6 +17,7 @@ typedef struct {
                                        rd, td = nd x rd, nd (unit, orthogonal)             */
   double   P[36];                   /* Hill matrix in Mandel notation in that frame,
                                        components (11, 22, 33, 23, 31, 12)                  */
+  double   p[6], Phi[36];           /* P = Phi diag(p) Phi^T (set by Hill48ParamsSetup)     */
 } HillParams;
 
 /* History per quadrature point: as J2's (Cp^{-1}: xx, yy, zz, xy, yz, xz; equivalent plastic strain) */

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include <petscsys.h>
 #include "material_hill48.h"
@@ -501,6 +502,8 @@ static PetscErrorCode test_object(void)
     r2 = mk->update(mk->ctx, F, hn, t2, d2, h2, &p2);
     TU_CHECK(hp->base.law == HARDENING_LINEAR && hp->base.sy0 == 250 && hp->r90 == 2.0 && fabs(hp->H - 1.6 / 2.6) < 1e-15 && hp->A[3] == 1 && hp->A[7] == 1 && hp->A[2] == 1,
              "-material_hill_r0, _r45, _r90, _rd, _normal and J2's hardening options read (H = %.4f, frame rd y, td z, normal x)", hp->H);
+    ierr = MaterialView(mat, PETSC_VIEWER_STDOUT_SELF);
+    TU_CHECK(!ierr, "MaterialView of hill48 (status %d)", (int)ierr);
     TU_CHECK(r1 == r2 && p1 == p2 && p1 && !memcmp(t1, t2, sizeof t1) && !memcmp(d1, d2, sizeof d1) && !memcmp(h1, h2, sizeof h1) && mk->plastic_strain(mk->ctx, h2) == h2[HILL48_HIST_EP],
              "MaterialKernel.update of hill48 = Hill48Update bit for bit, plastic_strain = h[6] = %.4f", h2[HILL48_HIST_EP]);
     PetscCall(MaterialDestroy(&mat));
@@ -539,6 +542,35 @@ static PetscErrorCode test_object(void)
   PetscFunctionReturn(0);
 }
 
+/* ---------- cost per call (informative, no check) ---------- */
+static void timing(void)
+{
+  const J2Params   mp = swift();
+  const HillParams hp = hill(swift(), 1.6, 1.2, 2.0, X1, Z1);
+  double           hn[J2_NHIST], hc[J2_NHIST], h[J2_NHIST], tau[9], dtau[81], acc = 0.0;
+  int              pl = 0;
+  J2HistoryInit(hn);
+  const double F1[9] = {1.06, 0.04, -0.03, 0.02, 0.97, 0.05, -0.04, 0.01, 0.99};
+  double       F2[9] = {1.10, 0.09, -0.02, 0.05, 0.94, 0.08, -0.06, 0.04, 1.01};
+  Hill48Update(&hp, F1, hn, tau, NULL, hc, &pl);
+  const int       N = 100000;
+  struct timespec t0, t1;
+  for (int model = 0; model < 2; model++)
+    for (int pass = 0; pass < 2; pass++) {
+      timespec_get(&t0, TIME_UTC);
+      for (int i = 0; i < N; i++) {
+        F2[0] = 1.10 + 1e-9 * (i & 7);
+        if (model) J2Update(&mp, F2, hc, tau, pass ? NULL : dtau, h, &pl);
+        else Hill48Update(&hp, F2, hc, tau, pass ? NULL : dtau, h, &pl);
+        acc += tau[0] + (pass ? 0.0 : dtau[40]);
+      }
+      timespec_get(&t1, TIME_UTC);
+      const double ns = ((t1.tv_sec - t0.tv_sec) * 1e9 + (t1.tv_nsec - t0.tv_nsec)) / N;
+      printf("# timing: %s plastic (Swift%s) %s tangent: %.0f ns/call (plastic=%d, checksum %.3e)\n", model ? "J2Update" : "Hill48Update", model ? "" : ", r 1.6/1.2/2.0",
+             pass ? "without" : "with", ns, pl, acc);
+    }
+}
+
 int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
@@ -547,6 +579,7 @@ int main(int argc, char **argv)
   test_tangent();
   test_objectivity();
   PetscCall(test_object());
+  timing();
   PetscCall(PetscFinalize());
   TU_RETURN();
 }

@@ -79,6 +79,8 @@ void Hill48FromR(double r0, double r45, double r90, double *F, double *G, double
   *L = *M = 1.5;
 }
 
+static void hill_eig(const HillParams *hp, double p[6], double Phi[36]);
+
 int Hill48ParamsSetup(HillParams *hp)
 {
   if (J2ParamsSetup(&hp->base)) return HILL48_ERR_ELASTIC;
@@ -125,6 +127,7 @@ int Hill48ParamsSetup(HillParams *hp)
   hp->P[21] = hp->L;
   hp->P[28] = hp->M;
   hp->P[35] = hp->N;
+  hill_eig(hp, hp->p, hp->Phi);
   return HILL48_OK;
 }
 
@@ -355,8 +358,8 @@ int Hill48Update(const HillParams *hp, const double F[9], const double hn[HILL48
     ee[i] = etr[i];
   }
   if (q_tr > 0.0 && q_tr - J2YieldStress(mp, ep_n, NULL) > 0.0) {
-    double p[6], Phi[36], ztr[6], z[6], q, Hp;
-    hill_eig(hp, p, Phi);
+    const double *p = hp->p, *Phi = hp->Phi;
+    double        ztr[6], z[6], q, Hp;
     for (int i = 0; i < 6; i++) {
       ztr[i] = 0.0;
       for (int j = 0; j < 6; j++) ztr[i] += Phi[6 * j + i] * str[j];
@@ -603,9 +606,8 @@ static PetscErrorCode MaterialView_Hill48(Material mat, PetscViewer v)
 
   PetscFunctionBeginUser;
   PetscCall(J2ParamsView(&hp->base, v));
-  if (hp->from_r) PetscCall(PetscViewerASCIIPrintf(v, "Hill 48: r0 = %g, r45 = %g, r90 = %g -> ", hp->r0, hp->r45, hp->r90));
-  else PetscCall(PetscViewerASCIIPrintf(v, "Hill 48: "));
-  PetscCall(PetscViewerASCIIPrintf(v, "F = %g, G = %g, H = %g, L = %g, M = %g, N = %g\n", hp->F, hp->G, hp->H, hp->L, hp->M, hp->N));
+  if (hp->from_r) PetscCall(PetscViewerASCIIPrintf(v, "Hill 48 from r0 = %g, r45 = %g, r90 = %g: F = %g, G = %g, H = %g, L = %g, M = %g, N = %g\n", hp->r0, hp->r45, hp->r90, hp->F, hp->G, hp->H, hp->L, hp->M, hp->N));
+  else PetscCall(PetscViewerASCIIPrintf(v, "Hill 48: F = %g, G = %g, H = %g, L = %g, M = %g, N = %g\n", hp->F, hp->G, hp->H, hp->L, hp->M, hp->N));
   PetscCall(PetscViewerASCIIPrintf(v, "rolling direction (%g, %g, %g), transverse (%g, %g, %g), normal (%g, %g, %g)\n", hp->A[0], hp->A[3], hp->A[6], hp->A[1], hp->A[4], hp->A[7], hp->A[2], hp->A[5],
                                    hp->A[8]));
   PetscCall(PetscViewerASCIIPrintf(v, "return map: rtol %g, maxit %d; history %d doubles per point\n", hp->base.rtol, hp->base.maxit, HILL48_NHIST));
