@@ -316,6 +316,62 @@ static void test_rvalues(void)
   }
 }
 
+/* ---------- the return map on large steps: converged, on the yield surface, flow rule ---------- */
+static void test_robust(void)
+{
+  unsigned long long seed = 19;
+  const double       rd[3] = {1, 2, 0.5}, nd[3] = {-2, 1, 0};
+  const HillParams   hps[3] = {hill(swift(), 0.3, 3.0, 0.5, rd, nd), hill(linear(150.0, 0.0), 2.8, 0.4, 1.9, X1, Z1), hill(swift(), 1.6, 1.2, 2.0, X1, Z1)};
+  int                nfail = 0, npl = 0;
+  double             eyield = 0;
+  for (int b = 0; b < 3; b++)
+    for (int t = 0; t < 100; t++) {
+      double F0[9], F[9], hn[J2_NHIST], h0[J2_NHIST], h[J2_NHIST], tau[9];
+      int    pl;
+      J2HistoryInit(hn);
+      random_F(&seed, 0.3, F0);
+      if (Hill48Update(&hps[b], F0, hn, tau, NULL, h0, &pl)) {
+        nfail++;
+        continue;
+      }
+      random_F(&seed, 0.5, F);
+      if (Hill48Update(&hps[b], F, h0, tau, NULL, h, &pl)) {
+        nfail++;
+        continue;
+      }
+      if (!pl) continue;
+      npl++;
+      /* q of the rotated stress in the orthotropy frame against sigma_y(ep): s = A^T R^T tau R A */
+      double C[9], lam[3], Q[9], ui[3], Ui[9], R[9], RA[9], S[9], sv[6], Ps[6], q2 = 0;
+      t3_tmul(F, F, C);
+      t3_sym_eig(C, lam, Q);
+      for (int a = 0; a < 3; a++) ui[a] = 1.0 / sqrt(lam[a]);
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) Ui[3 * i + j] = Q[3 * i] * ui[0] * Q[3 * j] + Q[3 * i + 1] * ui[1] * Q[3 * j + 1] + Q[3 * i + 2] * ui[2] * Q[3 * j + 2];
+      t3_mul(F, Ui, R);
+      t3_mul(R, hps[b].A, RA);
+      double RAt[9];
+      t3_transpose(RA, RAt);
+      rot2(RAt, tau, S);
+      const double r2 = 1.41421356237309504880;
+      sv[0] = S[0];
+      sv[1] = S[4];
+      sv[2] = S[8];
+      sv[3] = r2 * S[5];
+      sv[4] = r2 * S[2];
+      sv[5] = r2 * S[1];
+      for (int i = 0; i < 6; i++) {
+        Ps[i] = 0;
+        for (int j = 0; j < 6; j++) Ps[i] += hps[b].P[6 * i + j] * sv[j];
+        q2 += sv[i] * Ps[i];
+      }
+      const double sy = J2YieldStress(&hps[b].base, h[J2_HIST_EP], NULL);
+      eyield          = fmax(eyield, fabs(sqrt(q2) - sy) / sy);
+    }
+  TU_CHECK(nfail == 0 && npl >= 200 && eyield < 1e-8,
+           "large steps (|F - R| up to 0.5, r 0.3/3.0/0.5 oblique, 2.8/0.4/1.9 perfectly plastic, 1.6/1.2/2.0): %d failures, %d plastic, |q(s) - sigma_y(ep)|/sigma_y <= %.1e (tolerance rtol q_tr)", nfail, npl, eyield);
+}
+
 /* ---------- (3) tangent against central differences ---------- */
 static double tangent_fd_error(const HillParams *hp, const double F[9], const double hn[J2_NHIST], int *plastic)
 {
@@ -577,6 +633,7 @@ int main(int argc, char **argv)
   test_j2();
   test_rvalues();
   test_tangent();
+  test_robust();
   test_objectivity();
   PetscCall(test_object());
   timing();

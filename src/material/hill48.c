@@ -33,7 +33,9 @@
    equation in lam:
        r(lam) = q(lam) - sigma_y(ep_n + lam q(lam)) = 0,
    with q decreasing and lam q increasing in lam (sigma_y non-decreasing), so r is strictly
-   decreasing: a safeguarded Newton (bisection once bracketed) solves it; dr/dlam =
+   decreasing. It is solved by Newton's method on t = 2G pb lam / (1 + 2G pb lam) in [0, 1),
+   pb = sum_i p_i^2 z_tr,i^2 / q_tr^2, safeguarded by bisection in the bracket; q and lam q are
+   linear in t when the loaded p_i are equal, nearly linear otherwise. dr/dlam =
    -q [2G m_q^T Xi m_q + H'(1 - 2G lam m_q^T Xi m_q)], m_q = P s / q. For P = 3/2 I_dev (r = 1)
    this is J2's radial return with dg = lam q.
 
@@ -239,46 +241,48 @@ static double hill_q(const double p[6], const double ztr[6], double c, double la
 }
 
 /* Solve r(lam) = q(lam) - sigma_y(ep_n + lam q(lam)) = 0 for lam > 0, given r(0) > 0.
-   r is strictly decreasing; Newton, safeguarded by the bracket (doubling until bracketed,
-   bisection after). Returns 0 with lam, z, q and H' at the solution. */
+   The iteration variable is t = c pb lam / (1 + c pb lam) in [0, 1), c = 2G, with pb = the
+   trial-weighted eigenvalue sum_i p_i^2 z_tr,i^2 / q_tr^2 of P (the initial slope of q): then
+   z_i = z_tr,i (1 - t) / (1 - t + t p_i / pb), so that q and lam q are linear in t when the
+   p_i of the loaded modes are equal (von Mises: this is J2's iteration on dg = lam q) and nearly
+   linear otherwise. r is strictly decreasing in t; Newton, safeguarded by the bracket [0, 1)
+   (bisection). Returns 0 with lam, z, q and H' at the solution. */
 static int hill_return_map(const HillParams *hp, const double p[6], const double ztr[6], double q_tr, double ep_n, double *lam_out, double z[6], double *q_out, double *Hp_out)
 {
   const J2Params *mp  = &hp->base;
   const double    c   = 2.0 * mp->G;
   const double    tol = mp->rtol * q_tr;
-  double          lo = 0.0, hi = HUGE_VAL, lam, q, Hp;
-  {
-    /* first guess: the linearization at lam = 0 */
-    double       a = 0.0, H0;
-    const double sy0 = J2YieldStress(mp, ep_n, &H0);
-    for (int i = 0; i < 6; i++) a += p[i] * p[i] * ztr[i] * ztr[i];
-    a /= q_tr * q_tr; /* m^T m at lam = 0 */
-    lam = (q_tr - sy0) / (q_tr * (c * a + (isfinite(H0) ? H0 : 0.0)));
-    if (!(lam > 0.0) || !isfinite(lam)) lam = 1.0 / (c * (p[3] + p[4] + p[5]));
-  }
+  double          lo = 0.0, hi = 1.0, t = 0.0, lam = 0.0, q, Hp, pb = 0.0;
+  for (int i = 0; i < 6; i++) pb += p[i] * p[i] * ztr[i] * ztr[i];
+  pb /= q_tr * q_tr;
+  if (!(pb > 0.0) || !isfinite(pb)) return 1;
   for (int it = 0;; it++) {
+    lam              = t / (c * pb * (1.0 - t));
     q                = hill_q(p, ztr, c, lam, z);
     const double sy  = J2YieldStress(mp, ep_n + lam * q, &Hp);
     const double r   = q - sy;
-    double       mXm = 0.0; /* m^T Xi m */
+    double       mXm = 0.0; /* m^T Xi m, m = P s / q */
     for (int i = 0; i < 6; i++) mXm += p[i] * p[i] * z[i] * z[i] / (1.0 + c * lam * p[i]);
     mXm /= q * q;
     if (fabs(r) <= tol) break;
     if (it >= mp->maxit) return 1;
-    if (r > 0.0) lo = lam;
-    else hi = lam;
-    const double dr = -q * (c * mXm + Hp * (1.0 - c * lam * mXm));
-    double       ln = lam - r / dr;
-    if (!(ln > lo && ln < hi)) ln = isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * lam;
-    if (fabs(ln - lam) <= 4.0 * DBL_EPSILON * ln) { /* stalled at round-off */
-      lam = ln;
+    if (r > 0.0) lo = t;
+    else hi = t;
+    /* dr/dlam, dlam/dt = 1/(c pb (1-t)^2) */
+    const double drl = -q * (c * mXm + Hp * (1.0 - c * lam * mXm));
+    const double drt = drl / (c * pb * (1.0 - t) * (1.0 - t));
+    double       tn  = t - r / drt;
+    if (!(tn > lo && tn < hi)) tn = 0.5 * (lo + hi);
+    if (fabs(tn - t) <= 4.0 * DBL_EPSILON * tn) { /* stalled at round-off */
+      t   = tn;
+      lam = t / (c * pb * (1.0 - t));
       q   = hill_q(p, ztr, c, lam, z);
       J2YieldStress(mp, ep_n + lam * q, &Hp);
       break;
     }
-    lam = ln;
+    t = tn;
   }
-  if (!isfinite(Hp)) return 1;
+  if (!isfinite(Hp) || !(lam > 0.0)) return 1;
   *lam_out = lam;
   *q_out   = q;
   *Hp_out  = Hp;
