@@ -51,7 +51,9 @@
        d eb = Q [1/2 Gamma o (Q^T d bb Q)] Q^T (Daleckii-Krein in the eigenbasis Q of bb,
        Gamma_ab = (ln lam_a - ln lam_b)/(lam_a - lam_b), Gamma_aa = 1/lam_a);
        de = A^T d eb A,  ds = D_alg de,  d tau_b = A ds A^T,
-       d tau = R (Omega tau_b - tau_b Omega + d tau_b) R^T.
+       d tau = R (Omega tau_b - tau_b Omega + d tau_b) R^T
+   (evaluated as below: vectors in the eigenbasis of bb, one precomputed 6x6 map for the chain
+   d eb -> d tau_b, and the spin W(R omega) in the current frame).
    This is the exact derivative of the discrete update (up to the return map's tolerance).
 
    Objectivity: F -> Q F leaves U, bb, e, s and the history unchanged and gives R -> Q R,
@@ -154,6 +156,20 @@ static void from_mandel(const double v[6], double T[9])
   T[5] = T[7] = v[3] / SQ2;
   T[2] = T[6] = v[4] / SQ2;
   T[1] = T[3] = v[5] / SQ2;
+}
+
+/* T: the Mandel form of S -> M S M^T (columns: the images of the Mandel basis tensors) */
+static void mandel_rotation(const double M[9], double T[36])
+{
+  for (int j = 0; j < 6; j++) {
+    double e[6] = {0, 0, 0, 0, 0, 0}, S[9], B[9], v[6], Y[9];
+    e[j] = 1.0;
+    from_mandel(e, S);
+    t3_mult(S, M, Y);
+    t3_mul(M, Y, B);
+    to_mandel(B, v);
+    for (int i = 0; i < 6; i++) T[6 * i + j] = v[i];
+  }
 }
 
 /* B = M^T S M (S symmetric; B symmetrized) */
@@ -439,8 +455,13 @@ int Hill48Update(const HillParams *hp, const double F[9], const double hn[HILL48
   if (plastic) *plastic = isplastic;
   if (!dtau) return MAT_OK;
 
-  /* the tangent, one column dF = e_k (x) E_L at a time */
-  double Gm[9], Zi[9], Z[9], Gam[9];
+  /* The tangent, one column dF = e_k (x) E_L at a time. In the eigenbasis Q of bb (with
+     a~ = Q^T R^T e_k, c~ = Q^T R^T Gm^T E_L, omega~ = det Q Q^T omega):
+       (Q^T d bb Q)_ab = a~_a c~_b + c~_a a~_b + (lam_a - lam_b) W(omega~)_ab;
+     the chain d eb' -> de -> ds -> R A ds A^T R^T is one 6x6 map K = T(R A) D_alg T(W^T) on
+     Mandel vectors (T(M): the Mandel form of S -> M S M^T), and
+     R (Omega tau_b - tau_b Omega) R^T = W(R omega) tau - tau W(R omega). */
+  double Gm[9], Zi[9], Z[9], Gam[9], K6[36];
   t3_mult(Cpi, F, Gm); /* Cp^{-1} F^T */
   {
     const double tr = U[0] + U[4] + U[8];
@@ -452,49 +473,74 @@ int Hill48Update(const HillParams *hp, const double F[9], const double hn[HILL48
   }
   for (int a = 0; a < 3; a++)
     for (int b = 0; b < 3; b++) Gam[3 * a + b] = 0.5 * (a == b ? 1.0 / lam[a] : dlog_ratio(lam[a], lam[b]));
+  {
+    double Wt[9], RA[9], T1[36], T2[36], Y[36];
+    t3_transpose(W, Wt);
+    t3_mul(R, Ax, RA);
+    mandel_rotation(Wt, T1);
+    mandel_rotation(RA, T2);
+    for (int i = 0; i < 6; i++)
+      for (int j = 0; j < 6; j++) {
+        double t = 0.0;
+        for (int m = 0; m < 6; m++) t += Dalg[6 * i + m] * T1[6 * m + j];
+        Y[6 * i + j] = t;
+      }
+    for (int i = 0; i < 6; i++)
+      for (int j = 0; j < 6; j++) {
+        double t = 0.0;
+        for (int m = 0; m < 6; m++) t += T2[6 * i + m] * Y[6 * m + j];
+        K6[6 * i + j] = t;
+      }
+  }
+  const double dQ = t3_det(Q) > 0.0 ? 1.0 : -1.0;
   for (int k = 0; k < 3; k++) {
-    const double a[3] = {R[3 * k], R[3 * k + 1], R[3 * k + 2]}; /* R^T e_k */
+    const double av[3] = {R[3 * k], R[3 * k + 1], R[3 * k + 2]}; /* R^T e_k */
+    double       at[3];
+    for (int i = 0; i < 3; i++) at[i] = Q[i] * av[0] + Q[3 + i] * av[1] + Q[6 + i] * av[2];
     for (int L = 0; L < 3; L++) {
-      /* c = R^T (row L of Gm) */
-      double cv[3];
+      double cv[3], ct[3], ax[3] = {0, 0, 0}, om[3], ot[3], os[3];
+      /* c = R^T (row L of Gm), c~ = Q^T c */
       for (int i = 0; i < 3; i++) cv[i] = R[i] * Gm[3 * L] + R[3 + i] * Gm[3 * L + 1] + R[6 + i] * Gm[3 * L + 2];
-      /* omega = Z (E_L x a) */
-      double ax[3] = {0, 0, 0}, om[3];
+      for (int i = 0; i < 3; i++) ct[i] = Q[i] * cv[0] + Q[3 + i] * cv[1] + Q[6 + i] * cv[2];
+      /* omega = Z (E_L x a), omega~ = det Q Q^T omega, R omega */
       if (L == 0) {
-        ax[1] = -a[2];
-        ax[2] = a[1];
+        ax[1] = -av[2];
+        ax[2] = av[1];
       } else if (L == 1) {
-        ax[0] = a[2];
-        ax[2] = -a[0];
+        ax[0] = av[2];
+        ax[2] = -av[0];
       } else {
-        ax[0] = -a[1];
-        ax[1] = a[0];
+        ax[0] = -av[1];
+        ax[1] = av[0];
       }
       for (int i = 0; i < 3; i++) om[i] = Z[3 * i] * ax[0] + Z[3 * i + 1] * ax[1] + Z[3 * i + 2] * ax[2];
-      const double Om[9] = {0, -om[2], om[1], om[2], 0, -om[0], -om[1], om[0], 0};
-      /* d bb = a c^T + c a^T + bb Om - Om bb */
-      double dbb[9], T1[9], T2[9];
-      t3_mul(bb, Om, T1);
-      t3_mul(Om, bb, T2);
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) dbb[3 * i + j] = a[i] * cv[j] + cv[i] * a[j] + T1[3 * i + j] - T2[3 * i + j];
-      /* d eb in the eigenbasis of bb, then de = W^T deb' W */
-      double X[9], de3[9], de[6], ds[6], ds3[9], dtb[9];
-      congruence_t(Q, dbb, X);
-      for (int i = 0; i < 9; i++) X[i] *= Gam[i];
-      congruence_t(W, X, de3);
-      to_mandel(de3, de);
-      mv6(Dalg, de, ds);
-      from_mandel(ds, ds3);
-      congruence(Ax, ds3, dtb);
-      /* d tau = R (Om tb - tb Om + dtb) R^T */
-      t3_mul(Om, tb, T1);
-      t3_mul(tb, Om, T2);
-      for (int i = 0; i < 9; i++) dtb[i] += T1[i] - T2[i];
+      for (int i = 0; i < 3; i++) {
+        ot[i] = dQ * (Q[i] * om[0] + Q[3 + i] * om[1] + Q[6 + i] * om[2]);
+        os[i] = R[3 * i] * om[0] + R[3 * i + 1] * om[1] + R[3 * i + 2] * om[2];
+      }
+      /* d eb' (Mandel, eigenbasis of bb); W(w)_01 = -w2, W_02 = w1, W_12 = -w0 */
+      double x[6], ds[6];
+      x[0] = Gam[0] * 2.0 * at[0] * ct[0];
+      x[1] = Gam[4] * 2.0 * at[1] * ct[1];
+      x[2] = Gam[8] * 2.0 * at[2] * ct[2];
+      x[3] = SQ2 * Gam[5] * (at[1] * ct[2] + ct[1] * at[2] + (lam[1] - lam[2]) * -ot[0]);
+      x[4] = SQ2 * Gam[2] * (at[2] * ct[0] + ct[2] * at[0] + (lam[2] - lam[0]) * -ot[1]);
+      x[5] = SQ2 * Gam[1] * (at[0] * ct[1] + ct[0] * at[1] + (lam[0] - lam[1]) * -ot[2]);
+      mv6(K6, x, ds);
+      /* d tau = (ds as a tensor) + W(R omega) tau - tau W(R omega) */
       double dt[9];
-      congruence(R, dtb, dt);
+      from_mandel(ds, dt);
+      const double Ws[9] = {0, -os[2], os[1], os[2], 0, -os[0], -os[1], os[0], 0};
+      double       T1[9], T2[9];
+      t3_mul(Ws, tau, T1);
+      t3_mul(tau, Ws, T2);
       const int col = 3 * k + L;
-      for (int i = 0; i < 9; i++) dtau[9 * i + col] = dt[i];
+      for (int i = 0; i < 3; i++)
+        for (int j = i; j < 3; j++) {
+          const double v = dt[3 * i + j] + T1[3 * i + j] - T2[3 * i + j];
+          dtau[9 * (3 * i + j) + col] = v;
+          dtau[9 * (3 * j + i) + col] = v;
+        }
     }
   }
   return MAT_OK;
