@@ -29,6 +29,7 @@ run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit
 
 run build           bash tests/test_build.sh
 run material        bin/test_material
+run hill48          bin/test_hill48
 run fe              bin/test_fe
 run eas             bin/test_eas
 run meshgen         bin/test_meshgen
@@ -41,6 +42,7 @@ run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
 run lu-np1          mpiexec -n 1 bin/test_lu
 run lu-np2          mpiexec -n 2 bin/test_lu
 run solver          bash tests/test_solver.sh
+run hill48-solver   bash tests/test_hill48.sh
 run contact         bash tests/test_contact.sh
 run benchmark       bash tests/test_benchmark.sh
 run reference       bash tests/test_reference.sh

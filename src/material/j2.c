@@ -12,6 +12,7 @@
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "material_impl.h"
 #include "material_j2.h"
@@ -273,43 +274,78 @@ void J2KernelInit(const J2Params *mp, MaterialKernel *k)
 /* ------------------------------------------------------------------------------------------ */
 /* the material type "j2"                                                                      */
 /* ------------------------------------------------------------------------------------------ */
-static PetscErrorCode MaterialSetFromOptions_J2(Material mat)
+/* The options of J2Params (elasticity, hardening law, return-map controls), read inside the
+   caller's PetscOptionsBegin block with the prefix "material_", validated, then J2ParamsSetup.
+   Shared by the types built on J2's elasticity and hardening (j2, hill48). */
+PetscErrorCode J2ParamsSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, J2Params *mp)
 {
   const char *hard_types[] = {"linear", "swift", "HardeningLaw", "HARDENING_", NULL};
-  J2Params   *mp           = (J2Params *)mat->data;
-  MPI_Comm    comm         = mat->comm;
+  PetscInt    ht           = (PetscInt)mp->law, maxit;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsReal("-E", "Young's modulus", NULL, mp->E, &mp->E, NULL));
+  PetscCall(PetscOptionsReal("-nu", "Poisson's ratio", NULL, mp->nu, &mp->nu, NULL));
+  PetscCall(PetscOptionsEList("-hardening", "Hardening law", NULL, hard_types, 2, hard_types[ht], &ht, NULL));
+  mp->law = (HardeningLaw)ht;
+  PetscCall(PetscOptionsReal("-yield", "Linear hardening: initial yield stress", NULL, mp->sy0, &mp->sy0, NULL));
+  PetscCall(PetscOptionsReal("-hardening_modulus", "Linear hardening: slope", NULL, mp->H, &mp->H, NULL));
+  PetscCall(PetscOptionsReal("-swift_K", "Swift: K in K (eps0 + ep)^n", NULL, mp->swK, &mp->swK, NULL));
+  PetscCall(PetscOptionsReal("-swift_eps0", "Swift: eps0", NULL, mp->sweps0, &mp->sweps0, NULL));
+  PetscCall(PetscOptionsReal("-swift_n", "Swift: exponent n", NULL, mp->swn, &mp->swn, NULL));
+  PetscCheck(mp->E > 0 && PetscIsNormalReal(mp->E), comm, PETSC_ERR_USER_INPUT, "-material_E %g must be positive", (double)mp->E);
+  PetscCheck(mp->nu > -1 && mp->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "-material_nu %g must lie in (-1, 0.5)", (double)mp->nu);
+  if (mp->law == HARDENING_LINEAR) {
+    PetscCheck(mp->sy0 > 0 && PetscIsNormalReal(mp->sy0), comm, PETSC_ERR_USER_INPUT, "-material_yield %g must be positive", (double)mp->sy0);
+    PetscCheck(mp->H >= 0 && (mp->H == 0 || PetscIsNormalReal(mp->H)), comm, PETSC_ERR_USER_INPUT, "-material_hardening_modulus %g must be >= 0", (double)mp->H);
+  } else {
+    PetscCheck(mp->swK > 0 && PetscIsNormalReal(mp->swK), comm, PETSC_ERR_USER_INPUT, "-material_swift_K %g must be positive", (double)mp->swK);
+    PetscCheck(mp->sweps0 > 0 && PetscIsNormalReal(mp->sweps0), comm, PETSC_ERR_USER_INPUT, "-material_swift_eps0 %g must be positive", (double)mp->sweps0);
+    PetscCheck(mp->swn >= 0 && mp->swn < 1, comm, PETSC_ERR_USER_INPUT, "-material_swift_n %g must lie in [0, 1)", (double)mp->swn);
+  }
+  maxit = mp->maxit;
+  PetscCall(PetscOptionsReal("-return_rtol", "Relative tolerance of the local return map", NULL, mp->rtol, &mp->rtol, NULL));
+  PetscCall(PetscOptionsInt("-return_maxit", "Iteration limit of the local return map", NULL, maxit, &maxit, NULL));
+  PetscCheck(mp->rtol > 0 && mp->rtol < 1, comm, PETSC_ERR_USER_INPUT, "-material_return_rtol %g must lie in (0, 1)", (double)mp->rtol);
+  PetscCheck(maxit >= 1, comm, PETSC_ERR_USER_INPUT, "-material_return_maxit %d must be >= 1", (int)maxit);
+  mp->maxit = (int)maxit;
+  PetscCheck(J2ParamsSetup(mp) == 0, comm, PETSC_ERR_USER_INPUT, "invalid material parameters");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode J2ParamsView(const J2Params *mp, PetscViewer v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "E = %g, nu = %g (K = %g, G = %g)\n", mp->E, mp->nu, mp->K, mp->G));
+  if (mp->law == HARDENING_LINEAR) PetscCall(PetscViewerASCIIPrintf(v, "linear hardening: sigma_y = %g + %g ep\n", mp->sy0, mp->H));
+  else PetscCall(PetscViewerASCIIPrintf(v, "Swift hardening: sigma_y = %g (%g + ep)^%g\n", mp->swK, mp->sweps0, mp->swn));
+  PetscFunctionReturn(0);
+}
+
+/* the defaults of J2Params' options (those of the benchmark's aluminium) */
+void J2ParamsDefaults(J2Params *mp)
+{
+  memset(mp, 0, sizeof(*mp));
+  mp->E      = 69004;
+  mp->nu     = 0.3;
+  mp->law    = HARDENING_SWIFT;
+  mp->sy0    = 100;
+  mp->H      = 0;
+  mp->swK    = 589;
+  mp->sweps0 = 1e-4;
+  mp->swn    = 0.216;
+  mp->rtol   = 1e-12;
+  mp->maxit  = 50;
+  J2ParamsSetup(mp);
+}
+
+static PetscErrorCode MaterialSetFromOptions_J2(Material mat)
+{
+  J2Params *mp   = (J2Params *)mat->data;
+  MPI_Comm  comm = mat->comm;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "material_", "Material j2: finite-strain J2 plasticity (log strains, isotropic hardening)", "Material");
-  {
-    PetscInt ht = (PetscInt)mp->law, maxit;
-    PetscCall(PetscOptionsReal("-E", "Young's modulus", NULL, mp->E, &mp->E, NULL));
-    PetscCall(PetscOptionsReal("-nu", "Poisson's ratio", NULL, mp->nu, &mp->nu, NULL));
-    PetscCall(PetscOptionsEList("-hardening", "Hardening law", NULL, hard_types, 2, hard_types[ht], &ht, NULL));
-    mp->law = (HardeningLaw)ht;
-    PetscCall(PetscOptionsReal("-yield", "Linear hardening: initial yield stress", NULL, mp->sy0, &mp->sy0, NULL));
-    PetscCall(PetscOptionsReal("-hardening_modulus", "Linear hardening: slope", NULL, mp->H, &mp->H, NULL));
-    PetscCall(PetscOptionsReal("-swift_K", "Swift: K in K (eps0 + ep)^n", NULL, mp->swK, &mp->swK, NULL));
-    PetscCall(PetscOptionsReal("-swift_eps0", "Swift: eps0", NULL, mp->sweps0, &mp->sweps0, NULL));
-    PetscCall(PetscOptionsReal("-swift_n", "Swift: exponent n", NULL, mp->swn, &mp->swn, NULL));
-    PetscCheck(mp->E > 0 && PetscIsNormalReal(mp->E), comm, PETSC_ERR_USER_INPUT, "-material_E %g must be positive", (double)mp->E);
-    PetscCheck(mp->nu > -1 && mp->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "-material_nu %g must lie in (-1, 0.5)", (double)mp->nu);
-    if (mp->law == HARDENING_LINEAR) {
-      PetscCheck(mp->sy0 > 0 && PetscIsNormalReal(mp->sy0), comm, PETSC_ERR_USER_INPUT, "-material_yield %g must be positive", (double)mp->sy0);
-      PetscCheck(mp->H >= 0 && (mp->H == 0 || PetscIsNormalReal(mp->H)), comm, PETSC_ERR_USER_INPUT, "-material_hardening_modulus %g must be >= 0", (double)mp->H);
-    } else {
-      PetscCheck(mp->swK > 0 && PetscIsNormalReal(mp->swK), comm, PETSC_ERR_USER_INPUT, "-material_swift_K %g must be positive", (double)mp->swK);
-      PetscCheck(mp->sweps0 > 0 && PetscIsNormalReal(mp->sweps0), comm, PETSC_ERR_USER_INPUT, "-material_swift_eps0 %g must be positive", (double)mp->sweps0);
-      PetscCheck(mp->swn >= 0 && mp->swn < 1, comm, PETSC_ERR_USER_INPUT, "-material_swift_n %g must lie in [0, 1)", (double)mp->swn);
-    }
-    maxit = mp->maxit;
-    PetscCall(PetscOptionsReal("-return_rtol", "Relative tolerance of the local return map", NULL, mp->rtol, &mp->rtol, NULL));
-    PetscCall(PetscOptionsInt("-return_maxit", "Iteration limit of the local return map", NULL, maxit, &maxit, NULL));
-    PetscCheck(mp->rtol > 0 && mp->rtol < 1, comm, PETSC_ERR_USER_INPUT, "-material_return_rtol %g must lie in (0, 1)", (double)mp->rtol);
-    PetscCheck(maxit >= 1, comm, PETSC_ERR_USER_INPUT, "-material_return_maxit %d must be >= 1", (int)maxit);
-    mp->maxit = (int)maxit;
-    PetscCheck(J2ParamsSetup(mp) == 0, comm, PETSC_ERR_USER_INPUT, "invalid material parameters");
-  }
+  PetscCall(J2ParamsSetFromOptions(PetscOptionsObject, comm, mp));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -319,9 +355,7 @@ static PetscErrorCode MaterialView_J2(Material mat, PetscViewer v)
   const J2Params *mp = (const J2Params *)mat->data;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "E = %g, nu = %g (K = %g, G = %g)\n", mp->E, mp->nu, mp->K, mp->G));
-  if (mp->law == HARDENING_LINEAR) PetscCall(PetscViewerASCIIPrintf(v, "linear hardening: sigma_y = %g + %g ep\n", mp->sy0, mp->H));
-  else PetscCall(PetscViewerASCIIPrintf(v, "Swift hardening: sigma_y = %g (%g + ep)^%g\n", mp->swK, mp->sweps0, mp->swn));
+  PetscCall(J2ParamsView(mp, v));
   PetscCall(PetscViewerASCIIPrintf(v, "return map: rtol %g, maxit %d; history %d doubles per point\n", mp->rtol, mp->maxit, J2_NHIST));
   PetscFunctionReturn(0);
 }
@@ -341,16 +375,7 @@ PetscErrorCode MaterialCreate_J2(Material mat)
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&mp));
-  mp->E      = 69004;
-  mp->nu     = 0.3;
-  mp->law    = HARDENING_SWIFT;
-  mp->sy0    = 100;
-  mp->H      = 0;
-  mp->swK    = 589;
-  mp->sweps0 = 1e-4;
-  mp->swn    = 0.216;
-  mp->rtol   = 1e-12;
-  mp->maxit  = 50;
+  J2ParamsDefaults(mp);
   PetscCheck(J2ParamsSetup(mp) == 0, mat->comm, PETSC_ERR_PLIB, "invalid default J2 parameters");
   mat->data               = mp;
   mat->ops.setfromoptions = MaterialSetFromOptions_J2;
