@@ -32,6 +32,7 @@ static PetscErrorCode MaterialFinalizePackage(void)
 
 /* the create functions of the types (src/material/<name>.c) */
 PETSC_INTERN PetscErrorCode MaterialCreate_J2(Material);
+PETSC_INTERN PetscErrorCode MaterialCreate_Umat(Material);
 
 static PetscErrorCode MaterialRegisterAll(void)
 {
@@ -41,6 +42,7 @@ static PetscErrorCode MaterialRegisterAll(void)
   PetscCall(PetscRegisterFinalize(MaterialFinalizePackage));
   /* one line per material type */
   PetscCall(MaterialRegister("j2", MaterialCreate_J2));
+  PetscCall(MaterialRegister("umat", MaterialCreate_Umat));
   PetscFunctionReturn(0);
 }
 
