@@ -6,8 +6,8 @@
    `bin/test_umat -timing` also times the hex8 Jacobian with the Fortran UMAT and the built-in J2.
 
    Built with -DUMAT_TEST_LIBRARY (bin/umat_ctest.so, for tests/test_umat.sh) only the C UMATs
-   are compiled: umat_hypo_, umat_cut_ (PNEWDT = 0.5 on its first call in a process, then as
-   umat_hypo_) and umat_nan_ (a NaN stress for any nonzero strain increment).
+   are compiled: umat_hypo_, umat_cut_ (PNEWDT = 0.5 on its first call with a nonzero strain
+   increment in a process, then as umat_hypo_) and umat_nan_ (a NaN stress for any nonzero strain increment).
    PROPS of the C UMATs: E, nu. */
 #define _POSIX_C_SOURCE 199309L
 #include <math.h>
@@ -49,8 +49,11 @@ void umat_hypo_(UMAT_ARGS)
 void umat_cut_(UMAT_ARGS);
 void umat_cut_(UMAT_ARGS)
 {
-  static int calls = 0;
-  if (calls++ == 0) {
+  static int asked = 0;
+  double     ds    = 0;
+  for (int i = 0; i < 6; i++) ds += fabs(dstran[i]);
+  if (!asked && ds > 0) { /* the first call with a strain increment */
+    asked   = 1;
     *pnewdt = 0.5;
     return;
   }
