@@ -29,6 +29,7 @@ run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit
 
 run build           bash tests/test_build.sh
 run material        bin/test_material
+run umat            bin/test_umat
 run fe              bin/test_fe
 run meshgen         bin/test_meshgen
 run tool            bin/test_tool
@@ -44,6 +45,7 @@ run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh
 run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh
+run umat-runs       bash tests/test_umat.sh
 run memory          bash tests/test_memory.sh
 
 echo "$pass passed, $fail failed"
