@@ -284,7 +284,7 @@ static PetscErrorCode MaterialSetFromOptions_Umat(Material mat)
   MPI_Comm    comm = mat->comm;
   char        path[sizeof(p->path)], symbol[sizeof(p->symbol)];
   PetscInt    nprops = UMAT_MAXPROPS, nstatev = p->nstatev, ep = p->ep_statev;
-  PetscBool   setpath, setprops;
+  PetscBool   setpath, setprops, help;
   double      props[UMAT_MAXPROPS];
 
   PetscFunctionBeginUser;
@@ -297,6 +297,8 @@ static PetscErrorCode MaterialSetFromOptions_Umat(Material mat)
   PetscCall(PetscOptionsInt("-umat_nstatev", "NSTATV, the number of solution-dependent state variables", NULL, nstatev, &nstatev, NULL));
   PetscCall(PetscOptionsInt("-umat_statev_ep", "1-based STATEV index of the equivalent plastic strain (output), 0: none", NULL, ep, &ep, NULL));
   PetscOptionsEnd();
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (help && !path[0]) PetscFunctionReturn(0); /* -help lists the options; nothing runs */
   PetscCheck(path[0], comm, PETSC_ERR_USER_INPUT, "-material_type umat needs -material_umat PATH (a shared library with SUBROUTINE UMAT)");
   PetscCheck(nstatev >= 0 && nstatev <= 100000, comm, PETSC_ERR_USER_INPUT, "-material_umat_nstatev %d must lie in [0, 100000]", (int)nstatev);
   PetscCheck(ep >= 0 && ep <= nstatev, comm, PETSC_ERR_USER_INPUT, "-material_umat_statev_ep %d must lie in [0, nstatev = %d]", (int)ep, (int)nstatev);
