@@ -201,40 +201,48 @@ int UmatUpdate(const UmatParams *p, const double F[9], const double *hn, double 
        d dU_ab     = d(dU^2)_ab / (s_a + s_b)
      and in the basis M = dR N:  M^T dW M = M_ka g_b / s_b - d dU_ab / s_b  (skew),
      d eps^ = dR d ln(dU) dR^T = M (d ln dU) M^T. */
-  double tauM[9], Mt[9];
-  t3_transpose(M, Mt);
-  rotate(Mt, tau, tauM); /* M^T tau M */
-  double G1[9];          /* 1/2 Gamma_ab */
-  for (int a = 0; a < 3; a++)
-    for (int b = 0; b < 3; b++) G1[3 * a + b] = a == b ? 0.5 / c[a] : 0.5 * dlog_ratio(c[a], c[b]);
+  double G1[6], is[3] = {1.0 / s[0], 1.0 / s[1], 1.0 / s[2]}; /* 1/2 Gamma_ab, pairs 00 11 22 01 02 12 */
+  static const int pa[6] = {0, 1, 2, 0, 0, 1}, pb[6] = {0, 1, 2, 1, 2, 2};
+  for (int q = 0; q < 6; q++) G1[q] = pa[q] == pb[q] ? 0.5 / c[pa[q]] : 0.5 * dlog_ratio(c[pa[q]], c[pb[q]]);
   for (int k = 0; k < 3; k++) {
+    const double *u = M + 3 * k;
     for (int L = 0; L < 3; L++) {
-      double g[3], X[9], W[9], dC;
+      double g[3], X[9], dC[6], Wm[9], Y[9], Z[9], dev[6], w[3], T[9];
       for (int b = 0; b < 3; b++) g[b] = F0i[3 * L] * N[b] + F0i[3 * L + 1] * N[3 + b] + F0i[3 * L + 2] * N[6 + b];
-      for (int a = 0; a < 3; a++)
-        for (int b = 0; b < 3; b++) {
-          dC           = g[a] * M[3 * k + b] * s[b] + M[3 * k + a] * s[a] * g[b];
-          X[3 * a + b] = G1[3 * a + b] * dC;
-          W[3 * a + b] = (M[3 * k + a] * g[b] - dC / (s[a] + s[b])) / s[b];
-        }
-      /* rotation part in the basis M: W tauM - tauM W */
-      double T1[9], T2[9], dtM[9], de[9], dev[6], dsv[6], ds[9], dt[9];
-      t3_mul(W, tauM, T1);
-      t3_mul(tauM, W, T2);
-      for (int i = 0; i < 9; i++) dtM[i] = T1[i] - T2[i];
-      rotate(M, dtM, dt);
-      /* material part J C : (M X M^T) */
-      rotate(M, X, de);
-      t2v_strain(de, dev);
-      for (int m = 0; m < 6; m++) {
-        double v = 0.0;
-        for (int n = 0; n < 6; n++) v += ddsdde[m + 6 * n] * dev[n];
-        dsv[m] = J * v;
+      for (int q = 0; q < 6; q++) {
+        const int a = pa[q], b = pb[q];
+        dC[q]                        = g[a] * u[b] * s[b] + u[a] * s[a] * g[b];
+        X[3 * a + b] = X[3 * b + a] = G1[q] * dC[q];
       }
-      v2t_stress(dsv, ds);
+      /* M^T dW M (skew) */
+      Wm[0] = Wm[4] = Wm[8] = 0.0;
+      Wm[1] = (u[0] * g[1] - dC[3] / (s[0] + s[1])) * is[1];
+      Wm[2] = (u[0] * g[2] - dC[4] / (s[0] + s[2])) * is[2];
+      Wm[5] = (u[1] * g[2] - dC[5] / (s[1] + s[2])) * is[2];
+      Wm[3] = -Wm[1], Wm[6] = -Wm[2], Wm[7] = -Wm[5];
+      /* d eps^ = M X M^T, engineering Voigt */
+      t3_mul(M, X, Y);
+      for (int q = 0; q < 6; q++) {
+        const int i = pa[q], j = pb[q];
+        dev[q] = (i == j ? 1.0 : 2.0) * (Y[3 * i] * M[3 * j] + Y[3 * i + 1] * M[3 * j + 1] + Y[3 * i + 2] * M[3 * j + 2]);
+      }
+      /* dW = M Wm M^T (global, skew: w = its 01, 02, 12), T = dW tau; dW tau - tau dW = T + T^T */
+      t3_mul(M, Wm, Z);
+      w[0] = Z[0] * M[3] + Z[1] * M[4] + Z[2] * M[5];
+      w[1] = Z[0] * M[6] + Z[1] * M[7] + Z[2] * M[8];
+      w[2] = Z[3] * M[6] + Z[4] * M[7] + Z[5] * M[8];
+      {
+        const double dW[9] = {0, w[0], w[1], -w[0], 0, w[2], -w[1], -w[2], 0};
+        t3_mul(dW, tau, T);
+      }
       const int col = 3 * k + L;
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) dtau[(3 * i + j) * 9 + col] = ds[3 * i + j] + 0.5 * (dt[3 * i + j] + dt[3 * j + i]);
+      for (int q = 0; q < 6; q++) {
+        const int i = pa[q], j = pb[q];
+        double    v = 0.0;
+        for (int n = 0; n < 6; n++) v += ddsdde[q + 6 * n] * dev[n];
+        v = J * v + T[3 * i + j] + T[3 * j + i];
+        dtau[(3 * i + j) * 9 + col] = dtau[(3 * j + i) * 9 + col] = v;
+      }
     }
   }
   return MAT_OK;
