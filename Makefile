@@ -16,7 +16,7 @@ PETSC_LIBS   = $(shell pkg-config --libs PETSc 2>/dev/null)
 HDF5_DIR := /usr/lib/x86_64-linux-gnu/hdf5/openmpi
 CPPFLAGS = -Iinclude $(PETSC_CFLAGS) -I/usr/include/hdf5/openmpi
 CFLAGS   ?= -O3 -march=native -flto=auto -g -std=c11 -Wall -Wextra -Wno-unused-parameter -fno-math-errno
-LDLIBS   = $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -ldmumps -lmumps_common -lmetis -lm
+LDLIBS   = $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -ldmumps -lmumps_common -lmetis -lm -ldl
 # the system Python if it has h5py and matplotlib (installed by install-deps.sh), else python3 on PATH
 PYTHON   = $(shell /usr/bin/python3 -c "import h5py, matplotlib" >/dev/null 2>&1 && echo /usr/bin/python3 || echo python3)
 
@@ -25,9 +25,13 @@ LIB_OBJ  := $(LIB_SRC:src/%.c=build/%.o)
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(TEST_SRC:tests/%.c=bin/%)
 DEPS_STAMP := build/.deps-ok
+# the test user materials (tests/test_umat.sh): the Fortran UMATs tests/umat_*.f, and the C ones of
+# tests/test_umat.c built as a library; only those whose sources exist (names only, no tool asked)
+FC       := gfortran
+UMAT_SO  := $(patsubst tests/umat_%.f,bin/umat_%.so,$(wildcard tests/umat_*.f)) $(if $(wildcard tests/test_umat.c),bin/umat_ctest.so)
 
 .PHONY: all deps run check bench clean sanitize
-all: bin/atrito $(TEST_BIN)
+all: bin/atrito $(TEST_BIN) $(UMAT_SO)
 
 $(DEPS_STAMP):
 	@$(INSTALL_DEPS)
@@ -49,6 +53,14 @@ bin/atrito: build/main.o build/lib.a | $(DEPS_STAMP)
 bin/test_%: tests/test_%.c tests/testutil.h build/lib.a $(wildcard include/*.h src/*/*.h) | $(DEPS_STAMP)
 	@mkdir -p bin
 	$(CC) $(CPPFLAGS) $(CFLAGS) $< build/lib.a -o $@ $(LDLIBS)
+
+bin/umat_%.so: tests/umat_%.f | $(DEPS_STAMP)
+	@mkdir -p bin
+	$(FC) -O2 -g -shared -fPIC $< -o $@
+
+bin/umat_ctest.so: tests/test_umat.c include/material_umat.h | $(DEPS_STAMP)
+	@mkdir -p bin
+	$(CC) $(CPPFLAGS) -O2 -g -std=c11 -DUMAT_TEST_LIBRARY -shared -fPIC $< -o $@
 
 # the unit-test programs with AddressSanitizer and UndefinedBehaviorSanitizer (tests/test_memory.sh)
 SAN_FLAGS := -O1 -g -std=c11 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined

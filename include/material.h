@@ -18,6 +18,7 @@
 #define MAT_OK 0
 #define MAT_ERR_JACOBIAN 1  /* det F <= 0 */
 #define MAT_ERR_RETURNMAP 2 /* the local return map (or any local iteration) did not converge */
+#define MAT_ERR_CUTBACK 3   /* the material asks for a smaller increment (a user material's PNEWDT < 1) */
 
 typedef struct _p_Material *Material;
 

@@ -19,6 +19,8 @@ have pkg-config || need+=(pkg-config)
 [ -f "$R/usr/include/hdf5/openmpi/hdf5.h" ] || need+=(libhdf5-openmpi-dev)
 have mpiexec || need+=(openmpi-bin)
 have mpicc || need+=(libopenmpi-dev)
+# the Fortran user materials of the tests (tests/umat_*.f)
+have gfortran || need+=(gfortran)
 # an optimised BLAS: MUMPS factorisations are about 10x faster than with the reference BLAS
 [ -e "$R/usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3" ] || need+=(libopenblas0-pthread)
 "$PY" -c "import numpy" >/dev/null 2>&1 || need+=(python3-numpy)

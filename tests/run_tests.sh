@@ -30,6 +30,7 @@ run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit
 run build           bash tests/test_build.sh
 run material        bin/test_material
 run hill48          bin/test_hill48
+run umat            bin/test_umat
 run fe              bin/test_fe
 run eas             bin/test_eas
 run meshgen         bin/test_meshgen
@@ -50,6 +51,7 @@ run restart         bash tests/test_restart.sh
 run eas-solver      bash tests/test_eas.sh
 run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh
+run umat-runs       bash tests/test_umat.sh
 run memory          bash tests/test_memory.sh
 
 echo "$pass passed, $fail failed"

@@ -33,6 +33,7 @@ static PetscErrorCode MaterialFinalizePackage(void)
 /* the create functions of the types (src/material/<name>.c) */
 PETSC_INTERN PetscErrorCode MaterialCreate_J2(Material);
 PETSC_INTERN PetscErrorCode MaterialCreate_Hill48(Material);
+PETSC_INTERN PetscErrorCode MaterialCreate_Umat(Material);
 
 static PetscErrorCode MaterialRegisterAll(void)
 {
@@ -43,6 +44,7 @@ static PetscErrorCode MaterialRegisterAll(void)
   /* one line per material type */
   PetscCall(MaterialRegister("j2", MaterialCreate_J2));
   PetscCall(MaterialRegister("hill48", MaterialCreate_Hill48));
+  PetscCall(MaterialRegister("umat", MaterialCreate_Umat));
   PetscFunctionReturn(0);
 }
 
