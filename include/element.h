@@ -6,7 +6,9 @@
    through a MaterialKernel, so any material works with any element; the history of an element
    is nqp * material->nhist + nstate doubles.
 
-   Types: "hex8" (trilinear hexahedron, optional F-bar, include/element_hex8.h). A new type is
+   Types: "hex8" (trilinear hexahedron, optional F-bar, include/element_hex8.h), "hex8_eas" (nine
+   incompatible modes, condensed, for bending with one element through the thickness,
+   include/element_hex8_eas.h; doc/elements.md). A new type is
    one file in src/element/ plus one registration line in ElementRegisterAll()
    (src/element/element.c); include/element_impl.h is what a type's file sees of the object. */
 #ifndef ATRITO_ELEMENT_H

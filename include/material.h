@@ -5,7 +5,10 @@
    MaterialKernel, a table of pure functions on plain arrays (no PETSc objects, no MPI), with
    the history width per quadrature point chosen by the type at run time.
 
-   Types: "j2" (finite-strain J2 plasticity, include/material_j2.h). A new type is one file in
+   Types: "j2" (finite-strain J2 plasticity, include/material_j2.h), "hill48" (Hill 48 anisotropic
+   plasticity in the same log-strain framework, include/material_hill48.h; doc/materials.md),
+   "umat" (an Abaqus/Standard UMAT from a shared library, include/material_umat.h; doc/umat.md).
+   A new type is one file in
    src/material/ plus one registration line in MaterialRegisterAll() (src/material/material.c);
    include/material_impl.h is what a type's file (or a program registering its own type with
    MaterialRegister) sees of the object. */

@@ -13,7 +13,7 @@
 #include "material.h"
 #include "element.h"
 
-#define ATRITO_ERR_PROJECTION 3 /* failure status of a contact projection (beside MAT_ERR_*) */
+#define ATRITO_ERR_PROJECTION 100 /* failure status of a contact projection (beside the MAT_ERR_* of material.h) */
 
 typedef enum { LU_ORDERING_MUMPS = 0, LU_ORDERING_ND } LUOrdering;
 

@@ -18,7 +18,7 @@ for t in contact; do
   [ $rc -eq 0 ] && ! grep -q 'ERROR: \|runtime error' "$OUT/$t.log" && ok "test_$t under ASan/UBSan/LSan: $n checks, no invalid access, no leak" ||
     { not_ok "test_$t under the sanitizers (exit $rc)"; grep -m5 'ERROR\|runtime error\|SUMMARY' "$OUT/$t.log" | indent; }
 done
-for t in fe material meshgen tool output; do
+for t in fe material hill48 umat eas meshgen tool output; do
   # MPI's plugins keep memory until exit: leaks are checked by PETSc's -malloc_dump instead
   ASAN_OPTIONS=detect_leaks=0 bin-san/test_$t -malloc_debug -malloc_dump >"$OUT/$t.log" 2>&1; rc=$?
   n=$(grep -c '^ok' "$OUT/$t.log"); l=$(leaks "$OUT/$t.log")
