@@ -76,7 +76,7 @@ struct _p_Contact {
   PetscInt      naug;          /* multiplier updates in the current step                     */
   PetscReal     aug_pen, aug_dlam; /* largest penetration and multiplier change of the last  */
   PetscReal    *lam_r;         /* ns*3: the previous Uzawa increment (Aitken's relaxation)    */
-  PetscReal     omega;         /* the previous relaxation factor                             */
+  PetscReal     omega[2];      /* the previous relaxation factors (normal, tangential)        */
   PetscLogEvent ev_contact, ev_pairing;
 };
 
@@ -475,7 +475,7 @@ PetscErrorCode ContactSeed(Contact pb, const PetscScalar *u, PetscReal lambda, P
       pb->lam[3 * i + 1]     = cc->lT[0];
       pb->lam[3 * i + 2]     = cc->lT[1];
       pb->naug               = 0;
-      pb->omega              = 1;
+      pb->omega[0] = pb->omega[1] = 1;
       pb->lam_r[3 * i] = pb->lam_r[3 * i + 1] = pb->lam_r[3 * i + 2] = 0;
       pb->aug_pen = pb->aug_dlam = 0;
       pb->has_seed[i] = (pb->cst_c[i].has_frame && pb->cst_c[i].status != CONTACT_OPEN) ? PETSC_TRUE : PETSC_FALSE;
@@ -682,7 +682,7 @@ PetscInt  ContactAugmentedMax(Contact pb) { return pb->aug_max; }
 PetscErrorCode ContactAugment(Contact pb, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda)
 {
   PetscReal loc[4] = {0, 0, 0, 0}, gl[4]; /* penetration, stick slip, change, largest multiplier */
-  PetscReal dot[2] = {0, 0}, gdot[2], omega = 1;
+  PetscReal dot[4] = {0, 0, 0, 0}, gdot[4], omega[2] = {1, 1};
 
   PetscFunctionBeginUser;
   /* the Uzawa increments r = (t_N, t_T) - (lN, lT) at the solution */
@@ -705,16 +705,18 @@ PetscErrorCode ContactAugment(Contact pb, PetscBool *converged, PetscReal *maxpe
     if (st->status == CONTACT_STICK && pb->law.mu > 0) loc[1] = PetscMax(loc[1], dT / NodeLaw(pb, i).KT);
     for (int k = 0; k < 3; k++) {
       const PetscReal d = r[k] - pb->lam_r[3 * i + k];
-      dot[0] += pb->lam_r[3 * i + k] * d;
-      dot[1] += d * d;
+      dot[2 * (k > 0)] += pb->lam_r[3 * i + k] * d;
+      dot[2 * (k > 0) + 1] += d * d;
     }
   }
   PetscCall(MPIU_Allreduce(loc, gl, 4, MPIU_REAL, MPIU_MAX, pb->comm));
-  PetscCall(MPIU_Allreduce(dot, gdot, 2, MPIU_REAL, MPIU_SUM, pb->comm));
+  PetscCall(MPIU_Allreduce(dot, gdot, 4, MPIU_REAL, MPIU_SUM, pb->comm));
   /* Aitken's relaxation of the fixed-point iteration lambda <- lambda + r (Irons and Tuck): the
      first update of a step is the plain Uzawa one, the later ones lambda + omega r with
-     omega = -omega_prev r_prev.(r - r_prev)/|r - r_prev|^2, kept in [1, 100] */
-  if (pb->naug > 0 && gdot[1] > 0) omega = PetscMin(PetscMax(-pb->omega * gdot[0] / gdot[1], 1.0), 100.0);
+     omega = -omega_prev r_prev.(r - r_prev)/|r - r_prev|^2, kept in [1, 100]; one factor for the
+     normal multipliers, one for the tangential ones (their rates differ: K_N against K_T) */
+  for (int k = 0; k < 2; k++)
+    if (pb->naug > 0 && gdot[2 * k + 1] > 0) omega[k] = PetscMin(PetscMax(-pb->omega[k] * gdot[2 * k] / gdot[2 * k + 1], 1.0), 100.0);
   for (PetscInt i = 0; i < pb->ns; i++) {
     const ContactState *st = &pb->cst_t[i];
     PetscReal          *l  = pb->lam + 3 * i, *r = pb->lam_r + 3 * i;
@@ -722,7 +724,7 @@ PetscErrorCode ContactAugment(Contact pb, PetscBool *converged, PetscReal *maxpe
     r[0]                   = (in ? st->tN : 0) - l[0];
     r[1]                   = (in ? st->tT[0] : 0) - l[1];
     r[2]                   = (in ? st->tT[1] : 0) - l[2];
-    for (int k = 0; k < 3; k++) l[k] += omega * r[k];
+    for (int k = 0; k < 3; k++) l[k] += omega[k > 0] * r[k];
     /* back into the admissible set: lN >= 0, |lT| <= mu lN */
     l[0] = PetscMax(l[0], 0);
     {
@@ -733,7 +735,8 @@ PetscErrorCode ContactAugment(Contact pb, PetscBool *converged, PetscReal *maxpe
       }
     }
   }
-  pb->omega = omega;
+  pb->omega[0] = omega[0];
+  pb->omega[1] = omega[1];
   pb->naug++;
   pb->aug_pen  = gl[0];
   pb->aug_dlam = gl[2];
