@@ -61,3 +61,10 @@ msg=$(grep -o "atrito: error: step .*augmented Lagrangian: penetration .* after 
 atrito 1 auto -options_file cases/hemisphere_frictionless.opts -output_interval 0 -contact_penalty_normal auto &&
   line=$(grep -o "contact: automatic penalty.*" "$OUT/auto.log") && [ -n "$line" ] &&
   ok "automatic penalty on the seed hemisphere, $(grep -o 'done: .*' "$OUT/auto.log"): ${line:0:120}" || not_ok "automatic penalty run"
+
+# 7. a stiff block (E = 2e5) pressed and dragged on a plane with no user penalty (automatic K_N and
+#    K_T) and the augmented Lagrangian: the penetration below the tolerance, the Coulomb law in slip;
+#    the Newton iterations and solves per step reported
+atrito 1 stiff -options_file cases/block_plane_drag.opts -output_interval 0 -material_E 2e5 -contact_penalty_normal auto -contact_penalty_tangential auto -contact_augmented -contact_augmented_tol 1e-5 &&
+  pycheck auglag_drag "$OUT/stiff" 0.3 1e-5 25 "stiff block, E = 2e5, automatic penalty" &&
+  $PY -c "import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); print('    Newton iterations per step', [int(x['newton_its']) for x in r], 'solves', [int(x['augmentations']) for x in r])" "$OUT/stiff/contact.csv"
