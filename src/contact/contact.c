@@ -460,6 +460,11 @@ PetscErrorCode ContactDestroy(Contact *c)
 PetscErrorCode ContactSeed(Contact pb, const PetscScalar *u, PetscReal lambda, PetscBool from_committed)
 {
   PetscFunctionBeginUser;
+  if (from_committed) { /* a step or a retry: no augmentation yet (on every rank) */
+    pb->naug     = 0;
+    pb->omega[0] = pb->omega[1] = 1;
+    pb->aug_pen = pb->aug_dlam = 0;
+  }
   if (!pb->ns) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(pb->ev_pairing, 0, 0, 0, 0));
   for (PetscInt i = 0; i < pb->ns; i++) {
@@ -474,10 +479,8 @@ PetscErrorCode ContactSeed(Contact pb, const PetscScalar *u, PetscReal lambda, P
       pb->lam[3 * i]         = (pb->aug && cc->status != CONTACT_OPEN) ? cc->lN : 0;
       pb->lam[3 * i + 1]     = cc->lT[0];
       pb->lam[3 * i + 2]     = cc->lT[1];
-      pb->naug               = 0;
-      pb->omega[0] = pb->omega[1] = 1;
       pb->lam_r[3 * i] = pb->lam_r[3 * i + 1] = pb->lam_r[3 * i + 2] = 0;
-      pb->aug_pen = pb->aug_dlam = 0;
+
       pb->has_seed[i] = (pb->cst_c[i].has_frame && pb->cst_c[i].status != CONTACT_OPEN) ? PETSC_TRUE : PETSC_FALSE;
       if (pb->has_seed[i])
         for (int k = 0; k < 3; k++) pb->seed[3 * i + k] = pb->cst_c[i].t1[k];
