@@ -28,6 +28,9 @@ typedef struct {
   PetscInt active;   /* nodes pressed against the tool (normal force > 0)                        */
   PetscInt stick, slip; /* of those, sticking and slipping (frictional contact only)             */
   double max_pen;    /* largest penetration                                                      */
+  double mean_pen;   /* mean penetration of the pressed nodes                                    */
+  PetscInt augmentations; /* Newton solves of the step with -contact_augmented (0 without)        */
+  double dlambda;    /* the largest change of a nodal multiplier in the step's last update       */
 } ContactToolResult;
 
 PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c);
@@ -51,6 +54,17 @@ PetscErrorCode ContactAssemble(Contact c, const PetscScalar *u, PetscReal lambda
 PetscErrorCode ContactGetCOO(Contact c, PetscCount *n, PetscInt *ci, PetscInt *cj);
 /* the trial states of the last evaluation become the committed ones, at load lambda */
 PetscErrorCode ContactCommit(Contact c, PetscReal lambda);
+/* augmented Lagrangian (-contact_augmented): whether it is on, and the Newton solves allowed per
+   step. ContactAugment, after a converged Newton solve (the trial state at the solution): one Uzawa
+   update of the nodal multipliers (lN <- <lN - K_N g>, lT <- the Coulomb return of lT + K_T dg_T),
+   converged when the largest penetration and stick slip are below the tolerance and the largest
+   change of a multiplier is below -contact_augmented_multiplier_tol times the largest multiplier
+   (on all ranks). The multipliers are held fixed within a Newton solve; they start every step and
+   every retry from the committed ones (ContactSeed from_committed) and are committed with it. */
+PetscBool      ContactAugmented(Contact c);
+PetscInt       ContactAugmentedMax(Contact c);
+PetscErrorCode ContactAugment(Contact c, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda);
+PetscErrorCode ContactAugmentTolerances(Contact c, PetscReal *tol, PetscReal *mtol);
 /* the contact status and normal force of every slave node at the current iterate */
 PetscErrorCode ContactRecordActive(Contact c);
 /* nodes that entered or left contact in the last Newton iteration with a significant normal

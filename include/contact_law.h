@@ -5,7 +5,8 @@
    Conventions (doc/contact.md):
    * n is the unit normal of the tool surface at the closest point, pointing out of the tool;
      g = (y - x).n is the gap, negative when the node has penetrated the tool.
-   * t_N = K_N max(0, -g) >= 0 (compression positive).
+   * t_N = K_N max(0, -g) >= 0 (compression positive); with an augmented-Lagrangian multiplier
+     lN, t_N = max(0, lN - K_N g).
    * The slip increment of the step is the node's displacement relative to the tool,
      ds = (y - y_n) - (d - d_n), measured in the current tangent plane: dg_a = t_a . ds.
    * The tangential "pressure" t_T (local components on t1, t2) is the elastic predictor
@@ -41,6 +42,12 @@ int ContactReturnMap(const ContactLaw *law, const double tTn[2], const double dg
         the pressures tN and tT[2], and the status. An open node (g > 0) contributes nothing; a touching
    node (g = 0) is active with zero force and full stiffness. */
 int ContactNodeEval(const ContactLaw *law, double g, const double n[3], const double *dn, const double s[3], const double tTn[2], const double ds[3], double R[3], double *K, double t1[3], double *tN, double tT[2]);
+
+/* The same with a normal multiplier lN >= 0 (augmented Lagrangian, held fixed within a Newton
+   solve): t_N = lN + K_N (-g), active when g <= 0 or t_N > 0 (a node held by its multiplier may
+   stand off the tool by up to lN/K_N); the tangential multiplier is passed as tTn (the predictor is
+   t_T^e = tTn + K_T dg_T). With lN = 0 it is ContactNodeEval bit for bit. */
+int ContactNodeEvalAug(const ContactLaw *law, double lN, double g, const double n[3], const double *dn, const double s[3], const double tTn[2], const double ds[3], double R[3], double *K, double t1[3], double *tN, double tT[2]);
 
 /* Tributary areas of the corners of a 4-node face (corners in cyclic order): a_i = integral over
    the bilinear face of N_i dA (2x2 Gauss; exact for a plane face). They sum to the face area. */

@@ -22,6 +22,10 @@ typedef struct {
   PetscBool stalled;
   PetscReal stall_fnorm;
   PetscReal fnorm_hist[256];
+  /* the augmented Lagrangian of the current step: Newton solves, failure, last update */
+  PetscInt  aug_loops;
+  PetscBool aug_failed;
+  PetscReal aug_pen, aug_dlam;
 } Stepper;
 
 /* -load_*, -newton_stall_*, -contact_chatter_check */

@@ -45,6 +45,7 @@ run lu-np2          mpiexec -n 2 bin/test_lu
 run solver          bash tests/test_solver.sh
 run hill48-solver   bash tests/test_hill48.sh
 run contact         bash tests/test_contact.sh
+run auglag          bash tests/test_auglag.sh
 run benchmark       bash tests/test_benchmark.sh
 run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh

@@ -155,6 +155,86 @@ int main(void)
     }
   }
 
+  /* augmented Lagrangian kernel: lN = 0 is the penalty kernel bit for bit; with lN > 0,
+     t_N = lN + K_N p, a node standing off by less than lN/K_N stays active, the slip force stays on
+     the cone, and the tangent at fixed multipliers is exact (sphere, stick and slip) */
+  {
+    const double c[3] = {0.1, -0.2, 0.3}, Rs = 2.0;
+    int          same = 1;
+    for (int trial = 0; trial < 20; trial++) {
+      double n[3] = {urand(), urand(), urand()}, s[3] = {urand(), urand(), urand()}, ds[3] = {urand(), urand(), 0.1 * urand()}, tTn[2] = {100 * urand(), 100 * urand()};
+      double R1[3], K1[9], t11[3], tN1, tT1[2], R2[3], K2[9], t12[3], tN2, tT2[2];
+      const double nn = norm3(n), g = 0.01 * urand();
+      for (int i = 0; i < 3; i++) n[i] /= nn;
+      const int s1 = ContactNodeEval(&law, g, n, NULL, s, tTn, ds, R1, K1, t11, &tN1, tT1);
+      const int s2 = ContactNodeEvalAug(&law, 0.0, g, n, NULL, s, tTn, ds, R2, K2, t12, &tN2, tT2);
+      same = same && s1 == s2 && !memcmp(R1, R2, sizeof(R1)) && !memcmp(K1, K2, sizeof(K1)) && tN1 == tN2 && !memcmp(tT1, tT2, sizeof(tT1));
+    }
+    TU_CHECK(same, "augmented kernel with lN = 0: the penalty kernel bit for bit (20 random nodes, open and closed)");
+    {
+      const double n[3] = {0, 0, 1}, s[3] = {1, 0, 0}, ds[3] = {0, 0, 0}, tTn[2] = {0, 0}, lN = 500;
+      double       R[3], t1[3], tN, tT[2];
+      const int    a = ContactNodeEvalAug(&law, lN, 0.5 * lN / law.KN, n, NULL, s, tTn, ds, R, NULL, t1, &tN, tT);
+      const int    b = ContactNodeEvalAug(&law, lN, 1.5 * lN / law.KN, n, NULL, s, tTn, ds, R, NULL, t1, &tN, tT);
+      double       tNa;
+      ContactNodeEvalAug(&law, lN, -1e-3, n, NULL, s, tTn, ds, R, NULL, t1, &tNa, tT);
+      TU_CHECK(a != CONTACT_OPEN && b == CONTACT_OPEN && fabs(tNa - (lN + law.KN * 1e-3)) < 1e-12 * tNa, "augmented kernel: t_N = lN + K_N p (%.6g); held by the multiplier up to a gap lN/K_N, open beyond", tNa);
+    }
+    const char *label[2] = {"stick", "slip"};
+    for (int k = 0; k < 2; k++) {
+      double worst = 0, cone = 0;
+      int    status = -1;
+      for (int trial = 0; trial < 5; trial++) {
+        double dir[3] = {urand(), urand(), urand()}, y[3], yn[3], seed[3] = {urand(), urand(), urand()}, tTn[2] = {50 * urand(), 50 * urand()};
+        const double nd = norm3(dir), gap = (trial % 2 ? 0.002 : -0.01) * (1 + trial), lN = 1000 * (1 + trial);
+        for (int i = 0; i < 3; i++) {
+          y[i]  = c[i] + (Rs + gap) * dir[i] / nd;
+          yn[i] = y[i] + (k == 0 ? 1e-4 : 0.5) * urand();
+        }
+        double R[3], K[9], t1[3], tT[2], g, nv[3], dn[9], dsv[3], tN;
+        sphere_geom(c, Rs, y, &g, nv, dn);
+        for (int i = 0; i < 3; i++) dsv[i] = y[i] - yn[i];
+        const int st = ContactNodeEvalAug(&law, lN, g, nv, dn, seed, tTn, dsv, R, K, t1, &tN, tT);
+        if (trial == 0 || st != status) status = (trial == 0 ? st : -1);
+        if (st == CONTACT_SLIP) cone = fmax(cone, fabs(sqrt(tT[0] * tT[0] + tT[1] * tT[1]) - law.mu * tN) / (law.mu * tN));
+        for (int j = 0; j < 3; j++) {
+          const double h = 1e-7;
+          double       yp[3] = {y[0], y[1], y[2]}, ym[3] = {y[0], y[1], y[2]}, Rp[3], Rm[3];
+          yp[j] += h;
+          ym[j] -= h;
+          for (int sgn = 0; sgn < 2; sgn++) {
+            const double *yy = sgn ? ym : yp;
+            double        gg, nn2[3], dd[3], tt1[3], ttT[2], ttN;
+            sphere_geom(c, Rs, yy, &gg, nn2, NULL);
+            for (int i = 0; i < 3; i++) dd[i] = yy[i] - yn[i];
+            ContactNodeEvalAug(&law, lN, gg, nn2, NULL, seed, tTn, dd, sgn ? Rm : Rp, NULL, tt1, &ttN, ttT);
+          }
+          for (int i = 0; i < 3; i++) worst = fmax(worst, fabs((Rp[i] - Rm[i]) / (2 * h) - K[3 * i + j]) / law.KN);
+        }
+      }
+      TU_CHECK(worst < 1e-6 && status == (k == 0 ? CONTACT_STICK : CONTACT_SLIP) && cone < 1e-12, "augmented kernel on a sphere, %s (lN > 0, penetrated and standing off): tangent vs finite differences %.2e (relative to K_N), slip on the cone to %.1e", label[k], worst, cone);
+    }
+    /* Uzawa on one node pushed by a spring k_s = K_N into a rigid wall: lN <- lN + K_N p drives
+       the penetration to zero and lN to the exact contact force */
+    {
+      const double ks = law.KN, d = 0.1, n[3] = {0, 0, 1}, s[3] = {1, 0, 0}, tTn[2] = {0, 0}, ds[3] = {0, 0, 0};
+      double       lN = 0, x = 0, p = 0;
+      int          it;
+      for (it = 0; it < 200; it++) {
+        for (int nit = 0; nit < 20; nit++) { /* Newton: ks (x - d) + t_N = 0, the node at height -x */
+          double R[3], K[9], t1[3], tN, tT[2];
+          ContactNodeEvalAug(&law, lN, -x, n, NULL, s, tTn, ds, R, K, t1, &tN, tT);
+          const double r = ks * (x - d) + tN, kk = ks + K[8];
+          x -= r / kk;
+        }
+        p = x;
+        lN += law.KN * p;
+        if (fabs(p) < 1e-12 * d) break;
+      }
+      TU_CHECK(fabs(p) < 1e-12 * d && fabs(lN - ks * d) < 1e-9 * ks * d, "Uzawa on a spring against a wall: penetration %.1e after %d updates, multiplier = spring force to %.1e", p, it + 1, fabs(lN - ks * d) / (ks * d));
+    }
+  }
+
   /* frame recurrence along a great circle of a sphere: t1 stays continuous and orthonormal, and
      the friction force opposes the slip */
   {

@@ -4,6 +4,7 @@
    tangents, the per-tool results, and the node rows of the checkpoint. Each rank handles only the
    slave vertices it owns, so no contact force is counted twice. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include "contact.h"
 #include "contact_law.h"
@@ -32,6 +33,8 @@ typedef struct {
   PetscReal f[3];       /* contact force on the node                                       */
   PetscReal fT[3];      /* its tangential (friction) part                                  */
   PetscReal slip;       /* accumulated tangential slip                                     */
+  PetscReal lN, lT[2];  /* multipliers the next step starts from: normal (0 without
+                           -contact_augmented) and tangential, components on t1, t2            */
 } ContactState;
 
 struct _p_Contact {
@@ -46,6 +49,11 @@ struct _p_Contact {
   PetscBool  fd;           /* per-node finite-difference tangent instead of the analytic one  */
   PetscReal  search_opt;   /* pairing: skip a tool whose box is farther than this (<= 0: auto) */
   PetscReal  symmetry;     /* multiplicity of the model (0: from the mesh)                    */
+  PetscBool  kauto, ktauto;/* K_N (K_T) per node from the elements under it (auto)              */
+  PetscReal  kfactor, kratio;
+  PetscBool  aug;          /* augmented Lagrangian (Uzawa updates between Newton solves)      */
+  PetscReal  aug_tol, aug_tol_rel, aug_mtol;
+  PetscInt   aug_max;
   /* tools, owned slave vertices and their states */
   PetscInt      ntools;
   Tool         *tools;
@@ -60,6 +68,15 @@ struct _p_Contact {
   PetscBool    *active_prev;   /* ns: in contact at the start of the current Newton iteration */
   PetscReal    *tN_prev;       /* ns: and its normal force then                              */
   PairMemo     *pmemo;         /* ns: the last pairing of each node                          */
+  PetscReal    *kn, *kt;       /* ns: per-node penalties (automatic penalty), else NULL      */
+  PetscReal     hmin;          /* smallest element size normal to the contact faces (0: unknown) */
+  PetscReal     tol;           /* the penetration tolerance of the augmentation              */
+  PetscReal    *lam;           /* ns*3: multipliers of the current Newton solve (lN, lT1, lT2) */
+  PetscInt     *lam_tool;      /* ns: the tool they belong to, -1: none                      */
+  PetscInt      naug;          /* multiplier updates in the current step                     */
+  PetscReal     aug_pen, aug_dlam; /* largest penetration and multiplier change of the last  */
+  PetscReal    *lam_r;         /* ns*3: the previous Uzawa increment (Aitken's relaxation)    */
+  PetscReal     omega[2];      /* the previous relaxation factors (normal, tangential)        */
   PetscLogEvent ev_contact, ev_pairing;
 };
 
@@ -130,6 +147,19 @@ PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c)
   PetscFunctionReturn(0);
 }
 
+/* a penalty option's value: a positive number, or auto */
+static PetscErrorCode PenaltyValue(MPI_Comm comm, const char *opt, const char *buf, PetscBool *isauto, PetscReal *v)
+{
+  char *end;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrcasecmp(buf, "auto", isauto));
+  if (*isauto) PetscFunctionReturn(0);
+  *v = strtod(buf, &end);
+  PetscCheck(end != buf && *end == 0, comm, PETSC_ERR_USER_INPUT, "%s '%s' is neither a number nor auto", opt, buf);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ContactSetFromOptions(Contact c)
 {
   MPI_Comm comm = c->comm;
@@ -157,12 +187,44 @@ PetscErrorCode ContactSetFromOptions(Contact c)
       c->nset = nsets;
     }
   }
-  PetscCall(PetscOptionsReal("-contact_penalty_normal", "Normal penalty K_N (force per length, per node; per unit area with -contact_penalty_per_area)", NULL, c->law.KN, &c->law.KN, NULL));
-  PetscCall(PetscOptionsReal("-contact_penalty_tangential", "Tangential penalty K_T (force per length, per node; per unit area with -contact_penalty_per_area)", NULL, c->law.KT, &c->law.KT, NULL));
+  {
+    char      buf[64] = "1e5";
+    PetscBool set;
+    PetscCall(PetscOptionsString("-contact_penalty_normal", "Normal penalty K_N (force per length, per node; per unit area with -contact_penalty_per_area), or auto: per node from the elements under it", NULL, buf, buf, sizeof(buf), NULL));
+    PetscCall(PenaltyValue(comm, "-contact_penalty_normal", buf, &c->kauto, &c->law.KN));
+    PetscCall(PetscStrncpy(buf, c->kauto ? "auto" : "5e3", sizeof(buf)));
+    PetscCall(PetscOptionsString("-contact_penalty_tangential", "Tangential penalty K_T (force per length, per node; per unit area with -contact_penalty_per_area), or auto: -contact_penalty_ratio times K_N (the default with -contact_penalty_normal auto)", NULL, buf, buf, sizeof(buf), &set));
+    PetscCall(PenaltyValue(comm, "-contact_penalty_tangential", buf, &c->ktauto, &c->law.KT));
+    PetscCheck(!c->ktauto || c->kauto, comm, PETSC_ERR_USER_INPUT, "-contact_penalty_tangential auto needs -contact_penalty_normal auto");
+  }
+  c->kfactor = 1;
+  c->kratio  = 0.1;
+  PetscCall(PetscOptionsReal("-contact_penalty_factor", "With -contact_penalty_normal auto: K_N = factor * E * A / h per node (A its tributary area, h the element size normal to the contact face)", NULL, c->kfactor, &c->kfactor, NULL));
+  PetscCall(PetscOptionsReal("-contact_penalty_ratio", "With -contact_penalty_tangential auto: K_T = ratio * K_N per node", NULL, c->kratio, &c->kratio, NULL));
+  PetscCheck(c->kfactor > 0 && PetscIsNormalReal(c->kfactor), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor %g must be positive", (double)c->kfactor);
+  PetscCheck(c->kratio > 0 && PetscIsNormalReal(c->kratio), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_ratio %g must be positive", (double)c->kratio);
   PetscCall(PetscOptionsBool("-contact_penalty_per_area", "K_N and K_T are per unit area (force per length^3); each slave node's are scaled by its tributary area on the contact faces", NULL, c->per_area, &c->per_area, NULL));
+  PetscCheck(!(c->per_area && c->kauto), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area does not combine with -contact_penalty_normal auto (the automatic penalty is per node already)");
+  c->aug_tol     = -1;
+  c->aug_tol_rel = -1;
+  c->aug_mtol    = 1e-2;
+  c->aug_max     = 20;
+  PetscCall(PetscOptionsBool("-contact_augmented", "Augmented Lagrangian: Uzawa updates of the nodal multipliers between Newton solves until the penetration is below the tolerance", NULL, c->aug, &c->aug, NULL));
+  {
+    PetscBool sa, sr, sm, sx;
+    PetscCall(PetscOptionsReal("-contact_augmented_tol", "Augmented Lagrangian: largest penetration (and stick slip per step) accepted, a length (default 1e-2 times the smallest element size normal to the contact faces)", NULL, c->aug_tol, &c->aug_tol, &sa));
+    PetscCall(PetscOptionsReal("-contact_augmented_tol_relative", "Augmented Lagrangian: the tolerance as a fraction of the smallest element size normal to the contact faces (with -contact_augmented_tol: the smaller of the two)", NULL, c->aug_tol_rel, &c->aug_tol_rel, &sr));
+    PetscCall(PetscOptionsReal("-contact_augmented_multiplier_tol", "Augmented Lagrangian: largest change of a nodal multiplier accepted, relative to the largest multiplier", NULL, c->aug_mtol, &c->aug_mtol, &sm));
+    PetscCall(PetscOptionsInt("-contact_augmented_max", "Augmented Lagrangian: Newton solves (multiplier updates) allowed per load step", NULL, c->aug_max, &c->aug_max, &sx));
+    PetscCheck(!sa || (c->aug_tol > 0 && PetscIsNormalReal(c->aug_tol)), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_tol %g must be positive", (double)c->aug_tol);
+    PetscCheck(!sr || (c->aug_tol_rel > 0 && PetscIsNormalReal(c->aug_tol_rel)), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_tol_relative %g must be positive", (double)c->aug_tol_rel);
+    PetscCheck(c->aug_mtol > 0 && PetscIsNormalReal(c->aug_mtol), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_multiplier_tol %g must be positive", (double)c->aug_mtol);
+    PetscCheck(c->aug_max >= 1, comm, PETSC_ERR_USER_INPUT, "-contact_augmented_max %" PetscInt_FMT " must be >= 1", c->aug_max);
+    if (!sa && !sr) c->aug_tol_rel = 1e-2;
+  }
   PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient mu", NULL, c->law.mu, &c->law.mu, NULL));
-  PetscCheck(c->law.KN > 0 && PetscIsNormalReal(c->law.KN), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal %g must be positive", (double)c->law.KN);
-  PetscCheck(c->law.KT > 0 && PetscIsNormalReal(c->law.KT), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_tangential %g must be positive", (double)c->law.KT);
+  PetscCheck(c->kauto || (c->law.KN > 0 && PetscIsNormalReal(c->law.KN)), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal %g must be positive", (double)c->law.KN);
+  PetscCheck(c->ktauto || (c->law.KT > 0 && PetscIsNormalReal(c->law.KT)), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_tangential %g must be positive", (double)c->law.KT);
   PetscCheck(c->law.mu >= 0 && (c->law.mu == 0 || PetscIsNormalReal(c->law.mu)), comm, PETSC_ERR_USER_INPUT, "-contact_friction %g must be >= 0", (double)c->law.mu);
   {
     const char *tang[] = {"analytic", "fd", "ContactTangent", "CT_", NULL};
@@ -181,7 +243,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
 PetscErrorCode ContactGetAreaSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN])
 {
   PetscFunctionBeginUser;
-  *n    = (c->ntools && c->per_area) ? c->nset : 0;
+  *n    = (c->ntools && (c->per_area || c->kauto || c->aug)) ? c->nset : 0;
   *sets = c->set;
   PetscFunctionReturn(0);
 }
@@ -189,6 +251,78 @@ PetscErrorCode ContactGetAreaSets(Contact c, PetscInt *n, char (**sets)[ATRITO_N
 PetscInt ContactNumTools(Contact c) { return c->ntools; }
 PetscInt ContactNumSlaves(Contact c) { return c->ns; }
 PetscReal ContactSymmetry(Contact c) { return c->symmetry; }
+
+/* volume of a hex8 (2x2x2 Gauss: exact for the trilinear map) */
+static double HexVolume(const double x[8][3])
+{
+  static const double xa[8] = {-1, 1, 1, -1, -1, 1, 1, -1}, ea[8] = {-1, -1, 1, 1, -1, -1, 1, 1}, za[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
+  const double        gq    = 0.57735026918962576451;
+  double              V     = 0;
+  for (int q = 0; q < 8; q++) {
+    const double xi = xa[q] * gq, eta = ea[q] * gq, zeta = za[q] * gq;
+    double       J[3][3] = {{0}};
+    for (int a = 0; a < 8; a++) {
+      const double d[3] = {0.125 * xa[a] * (1 + ea[a] * eta) * (1 + za[a] * zeta), 0.125 * ea[a] * (1 + xa[a] * xi) * (1 + za[a] * zeta), 0.125 * za[a] * (1 + xa[a] * xi) * (1 + ea[a] * eta)};
+      for (int k = 0; k < 3; k++)
+        for (int l = 0; l < 3; l++) J[k][l] += x[a][k] * d[l];
+    }
+    V += J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  }
+  return fabs(V);
+}
+
+/* The element size normal to the contact faces at each slave node: h_i = 2 V_i / A_i, V_i the
+   node's share of the volume of the elements around it (an eighth of each; summed over the ranks
+   through the unconstrained twin DM, so rank-independent), A_i its tributary area (for a regular
+   mesh, the thickness of the element layer under the face). h[i] = 0 where A_i = 0. */
+static PetscErrorCode ElementSizes(Contact pb, PetscReal *h)
+{
+  const Mesh        *m = pb->mesh;
+  Vec                Vl, Vg;
+  PetscScalar       *vl;
+  const PetscScalar *vr;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(m->dmr, &Vl));
+  PetscCall(DMGetGlobalVector(m->dmr, &Vg));
+  PetscCall(VecZeroEntries(Vl));
+  PetscCall(VecZeroEntries(Vg));
+  PetscCall(VecGetArray(Vl, &vl));
+  for (PetscInt c = 0; c < m->nc; c++) {
+    double x[8][3];
+    for (int a = 0; a < 8; a++)
+      for (int k = 0; k < 3; k++) x[a][k] = m->X[3 * m->cv[8 * c + a] + k];
+    const double V = HexVolume(x);
+    for (int a = 0; a < 8; a++) vl[m->vloff[m->cv[8 * c + a]]] += V / 8;
+  }
+  PetscCall(VecRestoreArray(Vl, &vl));
+  PetscCall(DMLocalToGlobal(m->dmr, Vl, ADD_VALUES, Vg));
+  PetscCall(DMGlobalToLocal(m->dmr, Vg, INSERT_VALUES, Vl));
+  PetscCall(VecGetArrayRead(Vl, &vr));
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    const PetscInt  v = pb->slave[i];
+    const PetscReal A = m->varea ? m->varea[v] : 0;
+    h[i]              = A > 0 ? 2 * PetscRealPart(vr[m->vloff[v]]) / A : 0;
+  }
+  PetscCall(VecRestoreArrayRead(Vl, &vr));
+  PetscCall(DMRestoreLocalVector(m->dmr, &Vl));
+  PetscCall(DMRestoreGlobalVector(m->dmr, &Vg));
+  PetscFunctionReturn(0);
+}
+
+/* the law of slave node i: its own penalties (automatic), or the given ones (times its area) */
+static inline ContactLaw NodeLaw(const struct _p_Contact *pb, PetscInt i)
+{
+  ContactLaw law = pb->law;
+  if (pb->kn) {
+    law.KN = pb->kn[i];
+    law.KT = pb->kt[i];
+  } else if (pb->per_area) { /* penalties per unit area times the node's tributary area */
+    law.KN *= pb->mesh->varea[pb->slave[i]];
+    law.KT *= pb->mesh->varea[pb->slave[i]];
+  }
+  return law;
+}
 
 PetscErrorCode ContactSetUp(Contact pb, const Mesh *m)
 {
@@ -219,6 +353,7 @@ PetscErrorCode ContactSetUp(Contact pb, const Mesh *m)
   PetscCall(PetscCalloc2(pb->ns, &pb->active_prev, pb->ns, &pb->tN_prev));
   PetscCall(PetscMalloc1(pb->ns, &pb->pmemo));
   PetscCall(PetscCalloc2(pb->ns, &pb->cst_c, pb->ns, &pb->cst_t));
+  PetscCall(PetscCalloc3(3 * pb->ns, &pb->lam, pb->ns, &pb->lam_tool, 3 * pb->ns, &pb->lam_r));
   pb->ns = 0;
   for (PetscInt v = 0; v < m->nv; v++) {
     if (!(mark[v] && m->vowned[v])) continue;
@@ -231,8 +366,50 @@ PetscErrorCode ContactSetUp(Contact pb, const Mesh *m)
     pb->cst_c[i].gap                       = PETSC_INFINITY;
     pb->cst_t[i]                           = pb->cst_c[i];
     pb->pmemo[i].tool                      = -2;
+    pb->lam_tool[i]                        = -1;
   }
   PetscCall(PetscFree(mark));
+  if (pb->kauto || pb->aug) { /* element sizes: the automatic penalty, the relative tolerance */
+    PetscReal *h, hmin = PETSC_MAX_REAL;
+    PetscInt   nzero = 0;
+    PetscCheck(m->varea, pb->comm, PETSC_ERR_PLIB, "contact: the mesh carries no tributary areas");
+    PetscCall(PetscMalloc1(pb->ns + 1, &h));
+    PetscCall(ElementSizes(pb, h));
+    for (PetscInt i = 0; i < pb->ns; i++) {
+      if (h[i] > 0) hmin = PetscMin(hmin, h[i]);
+      else nzero++;
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hmin, 1, MPIU_REAL, MPI_MIN, pb->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nzero, 1, MPIU_INT, MPI_SUM, pb->comm));
+    pb->hmin = hmin < PETSC_MAX_REAL ? hmin : 0;
+    if (pb->kauto) {
+      PetscReal E, kmin = PETSC_MAX_REAL, kmax = 0;
+      PetscBool set;
+      PetscCheck(!nzero, pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, pb->set[0], pb->nset > 1 ? ", ..." : "");
+      /* the body's elastic modulus, as the material reads it */
+      PetscCall(PetscOptionsGetReal(NULL, NULL, "-material_E", &E, &set));
+      PetscCheck(set && E > 0 && PetscIsNormalReal(E), pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto needs the elastic modulus -material_E");
+      PetscCall(PetscMalloc2(pb->ns, &pb->kn, pb->ns, &pb->kt));
+      for (PetscInt i = 0; i < pb->ns; i++) {
+        pb->kn[i] = pb->kfactor * E * m->varea[pb->slave[i]] / h[i];
+        pb->kt[i] = pb->ktauto ? pb->kratio * pb->kn[i] : pb->law.KT;
+        kmin      = PetscMin(kmin, pb->kn[i]);
+        kmax      = PetscMax(kmax, pb->kn[i]);
+      }
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmin, 1, MPIU_REAL, MPI_MIN, pb->comm));
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmax, 1, MPIU_REAL, MPI_MAX, pb->comm));
+      PetscCall(PetscPrintf(pb->comm, "contact: automatic penalty K_N = %g x E %g x A / h per node: smallest %g, largest %g; K_T %s; smallest element size normal to the contact faces %g\n", (double)pb->kfactor, (double)E, (double)kmin, (double)kmax, pb->ktauto ? "= -contact_penalty_ratio x K_N" : "as given", (double)pb->hmin));
+    }
+    PetscCall(PetscFree(h));
+  }
+  if (pb->aug) {
+    pb->tol = pb->aug_tol > 0 ? pb->aug_tol : PETSC_MAX_REAL;
+    if (pb->aug_tol_rel > 0) {
+      PetscCheck(pb->hmin > 0, pb->comm, PETSC_ERR_USER_INPUT, "-contact_augmented_tol_relative: no slave node lies on a boundary face of -contact_set, so there is no element size; give -contact_augmented_tol");
+      pb->tol = PetscMin(pb->tol, pb->aug_tol_rel * pb->hmin);
+    }
+    PetscCall(PetscPrintf(pb->comm, "contact: augmented Lagrangian, penetration tolerance %g (smallest element size normal to the contact faces %g), multiplier change tolerance %g, at most %" PetscInt_FMT " Newton solves per step\n", (double)pb->tol, (double)pb->hmin, (double)pb->aug_mtol, pb->aug_max));
+  }
   if (pb->per_area) { /* the tributary areas come with the mesh (MeshSetAreaSets) */
     PetscReal amin = PETSC_MAX_REAL, amax = 0, asum = 0;
     PetscInt  nzero = 0;
@@ -254,7 +431,8 @@ PetscErrorCode ContactSetUp(Contact pb, const Mesh *m)
   {
     PetscInt n = pb->ns;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, pb->comm));
-    PetscCall(PetscPrintf(pb->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, pb->set[0], pb->nset > 1 ? ", ..." : "", pb->ntools, (double)pb->law.KN, (double)pb->law.KT, (double)pb->law.mu, pb->fd ? "finite-difference" : "analytic"));
+    if (pb->kauto) PetscCall(PetscPrintf(pb->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N per node (automatic), K_T %s, mu %g, %s tangent\n", n, pb->set[0], pb->nset > 1 ? ", ..." : "", pb->ntools, pb->ktauto ? "per node (automatic)" : "as given", (double)pb->law.mu, pb->fd ? "finite-difference" : "analytic"));
+    else PetscCall(PetscPrintf(pb->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, pb->set[0], pb->nset > 1 ? ", ..." : "", pb->ntools, (double)pb->law.KN, (double)pb->law.KT, (double)pb->law.mu, pb->fd ? "finite-difference" : "analytic"));
     PetscCheck(n > 0, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set '%s' holds no vertex", pb->set[0]);
   }
   PetscFunctionReturn(0);
@@ -271,6 +449,8 @@ PetscErrorCode ContactDestroy(Contact *c)
     PetscCall(PetscFree2(pb->active_prev, pb->tN_prev));
     PetscCall(PetscFree(pb->pmemo));
     PetscCall(PetscFree2(pb->cst_c, pb->cst_t));
+    PetscCall(PetscFree3(pb->lam, pb->lam_tool, pb->lam_r));
+    PetscCall(PetscFree2(pb->kn, pb->kt));
   }
   PetscCall(ToolsDestroy(pb->ntools, &pb->tools));
   PetscCall(PetscFree(*c));
@@ -280,6 +460,11 @@ PetscErrorCode ContactDestroy(Contact *c)
 PetscErrorCode ContactSeed(Contact pb, const PetscScalar *u, PetscReal lambda, PetscBool from_committed)
 {
   PetscFunctionBeginUser;
+  if (from_committed) { /* a step or a retry: no augmentation yet (on every rank) */
+    pb->naug     = 0;
+    pb->omega[0] = pb->omega[1] = 1;
+    pb->aug_pen = pb->aug_dlam = 0;
+  }
   if (!pb->ns) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(pb->ev_pairing, 0, 0, 0, 0));
   for (PetscInt i = 0; i < pb->ns; i++) {
@@ -287,7 +472,15 @@ PetscErrorCode ContactSeed(Contact pb, const PetscScalar *u, PetscReal lambda, P
     Projection pr;
     PetscInt   tool;
     if (from_committed) {
-      /* step start or retry: the committed frame of a node in contact */
+      /* step start or retry: the committed multipliers (the normal one with -contact_augmented
+         only) and the committed frame of a node in contact */
+      const ContactState *cc = &pb->cst_c[i];
+      pb->lam_tool[i]        = cc->status != CONTACT_OPEN ? cc->tool : -1;
+      pb->lam[3 * i]         = (pb->aug && cc->status != CONTACT_OPEN) ? cc->lN : 0;
+      pb->lam[3 * i + 1]     = cc->lT[0];
+      pb->lam[3 * i + 2]     = cc->lT[1];
+      pb->lam_r[3 * i] = pb->lam_r[3 * i + 1] = pb->lam_r[3 * i + 2] = 0;
+
       pb->has_seed[i] = (pb->cst_c[i].has_frame && pb->cst_c[i].status != CONTACT_OPEN) ? PETSC_TRUE : PETSC_FALSE;
       if (pb->has_seed[i])
         for (int k = 0; k < 3; k++) pb->seed[3 * i + k] = pb->cst_c[i].t1[k];
@@ -301,9 +494,11 @@ PetscErrorCode ContactSeed(Contact pb, const PetscScalar *u, PetscReal lambda, P
     if (!from_committed) {
       /* start of a Newton iteration: eq 30, t2 = n x t1(previous iteration), t1 = t2 x n, for the
          nodes in contact; a node out of contact forgets its frame */
-      if (pr.gap <= 0 && pb->has_seed[i] && !ContactFrame(pr.n, pb->seed + 3 * i, t1, t2))
+      const double lN    = pb->lam_tool[i] == tool ? pb->lam[3 * i] : 0;
+      const PetscBool in = (pr.gap <= 0 || (lN > 0 && lN - NodeLaw(pb, i).KN * pr.gap > 0)) ? PETSC_TRUE : PETSC_FALSE;
+      if (in && pb->has_seed[i] && !ContactFrame(pr.n, pb->seed + 3 * i, t1, t2))
         for (int k = 0; k < 3; k++) pb->seed[3 * i + k] = t1[k];
-      else if (pr.gap > 0) pb->has_seed[i] = PETSC_FALSE;
+      else if (!in) pb->has_seed[i] = PETSC_FALSE;
     }
     if (!pb->has_seed[i]) { /* first contact: the chord of eq 28 */
       Chord(pb, tool, &pr, pb->seed + 3 * i);
@@ -321,7 +516,8 @@ static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda,
   Projection          pr;
   double              sh[3], shc[3], ds[3], tTn[2] = {0, 0}, dn[9], *dnp = NULL;
   PetscInt            tool;
-  ContactLaw          law = pb->law;
+  const ContactLaw    law = NodeLaw(pb, i);
+  double              lN  = 0;
 
   memset(R, 0, 3 * sizeof(double));
   if (K) memset(K, 0, 9 * sizeof(double));
@@ -342,17 +538,19 @@ static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda,
   st->patch = pr.patch;
   st->xi    = pr.xi;
   st->eta   = pr.eta;
-  if (pr.gap > 0) return 0;
+  /* the multipliers of the current solve (the committed state's at the start of a step) */
+  if (pb->lam_tool[i] == tool) {
+    lN     = pb->lam[3 * i];
+    tTn[0] = pb->lam[3 * i + 1];
+    tTn[1] = pb->lam[3 * i + 2];
+  }
+  if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0)) return 0;
 
   const Tool *tl = &pb->tools[tool];
   ToolShift(tl, lambda, sh);
   ToolShift(tl, pb->lambda_c, shc);
   /* slip increment: the node's displacement relative to the tool over the step */
   for (int k = 0; k < 3; k++) ds[k] = (y[k] - cc->y[k]) - (sh[k] - shc[k]);
-  if (cc->status != CONTACT_OPEN && cc->tool == tool) {
-    tTn[0] = cc->tT[0];
-    tTn[1] = cc->tT[1];
-  }
   if (K && !pb->fd) {
     if (PatchNormalDerivative(&tl->patch[pr.patch], sh, y, &pr, dn)) {
       /* no closed form (Coons patch): the derivative of the normal by central differences */
@@ -368,11 +566,7 @@ static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda,
     }
     dnp = dn;
   }
-  if (pb->per_area) { /* penalties per unit area times the node's tributary area */
-    law.KN *= pb->mesh->varea[pb->slave[i]];
-    law.KT *= pb->mesh->varea[pb->slave[i]];
-  }
-  st->status    = ContactNodeEval(&law, pr.gap, pr.n, dnp, pb->seed + 3 * i, tTn, ds, R, pb->fd ? NULL : K, st->t1, &st->tN, st->tT);
+  st->status    = ContactNodeEvalAug(&law, lN, pr.gap, pr.n, dnp, pb->seed + 3 * i, tTn, ds, R, pb->fd ? NULL : K, st->t1, &st->tN, st->tT);
   st->has_frame = PETSC_TRUE;
   for (int k = 0; k < 3; k++) {
     st->f[k]  = -R[k];
@@ -461,16 +655,108 @@ PetscErrorCode ContactGetCOO(Contact pb, PetscCount *n, PetscInt *ci, PetscInt *
   PetscFunctionReturn(0);
 }
 
+/* in contact with a force: the node presses on the tool (a touching node, g = 0, carries none) */
+static inline PetscBool Pressed(const ContactState *st) { return (st->status != CONTACT_OPEN && st->tN > 0) ? PETSC_TRUE : PETSC_FALSE; }
+
 PetscErrorCode ContactCommit(Contact pb, PetscReal lambda)
 {
   PetscFunctionBeginUser;
   if (pb->ns) PetscCall(PetscArraycpy(pb->cst_c, pb->cst_t, pb->ns));
+  /* the multipliers the next step starts from: the forces of this one (the Uzawa update
+     lN <- <lN - K_N g> = t_N, lT <- the returned tT); the normal one only with augmentation */
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    ContactState *s = &pb->cst_c[i];
+    s->lN           = (pb->aug && s->status != CONTACT_OPEN) ? s->tN : 0;
+    s->lT[0]        = s->tT[0];
+    s->lT[1]        = s->tT[1];
+  }
   pb->lambda_c = lambda;
   PetscFunctionReturn(0);
 }
 
-/* in contact with a force: the node presses on the tool (a touching node, g = 0, carries none) */
-static inline PetscBool Pressed(const ContactState *st) { return (st->status != CONTACT_OPEN && st->tN > 0) ? PETSC_TRUE : PETSC_FALSE; }
+PetscBool ContactAugmented(Contact pb) { return (pb->aug && pb->ntools) ? PETSC_TRUE : PETSC_FALSE; }
+PetscInt  ContactAugmentedMax(Contact pb) { return pb->aug_max; }
+
+/* One Uzawa update from the trial state of the last evaluation (the converged Newton solution at
+   the current multipliers): lN <- <lN - K_N g> (= t_N), lT <- the return map of the augmented
+   predictor lT + K_T dg_T (= t_T); converged when the largest penetration of a pressed node and the
+   largest stick slip of the step (|change of lT|/K_T at a sticking node) are below the tolerance
+   and no multiplier changed by more than -contact_augmented_multiplier_tol times the largest. */
+PetscErrorCode ContactAugment(Contact pb, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda)
+{
+  PetscReal loc[4] = {0, 0, 0, 0}, gl[4]; /* penetration, stick slip, change, largest multiplier */
+  PetscReal dot[4] = {0, 0, 0, 0}, gdot[4], omega[2] = {1, 1};
+
+  PetscFunctionBeginUser;
+  /* the Uzawa increments r = (t_N, t_T) - (lN, lT) at the solution */
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    const ContactState *st   = &pb->cst_t[i];
+    const PetscBool     in   = st->status != CONTACT_OPEN ? PETSC_TRUE : PETSC_FALSE;
+    const PetscInt      nt   = in ? st->tool : -1;
+    const PetscReal     nN   = in ? st->tN : 0, nT[2] = {in ? st->tT[0] : 0, in ? st->tT[1] : 0};
+    const PetscBool     same = (pb->lam_tool[i] == nt && nt >= 0) ? PETSC_TRUE : PETSC_FALSE;
+    PetscReal          *l = pb->lam + 3 * i, r[3];
+    if (!same) l[0] = l[1] = l[2] = 0;
+    pb->lam_tool[i] = nt;
+    r[0]            = nN - l[0];
+    r[1]            = nT[0] - l[1];
+    r[2]            = nT[1] - l[2];
+    const PetscReal dT = PetscSqrtReal(r[1] * r[1] + r[2] * r[2]);
+    loc[2]             = PetscMax(loc[2], PetscSqrtReal(r[0] * r[0] + dT * dT));
+    loc[3]             = PetscMax(loc[3], PetscSqrtReal(nN * nN + nT[0] * nT[0] + nT[1] * nT[1]));
+    if (Pressed(st)) loc[0] = PetscMax(loc[0], -st->gap);
+    if (st->status == CONTACT_STICK && pb->law.mu > 0) loc[1] = PetscMax(loc[1], dT / NodeLaw(pb, i).KT);
+    for (int k = 0; k < 3; k++) {
+      const PetscReal d = r[k] - pb->lam_r[3 * i + k];
+      dot[2 * (k > 0)] += pb->lam_r[3 * i + k] * d;
+      dot[2 * (k > 0) + 1] += d * d;
+    }
+  }
+  PetscCall(MPIU_Allreduce(loc, gl, 4, MPIU_REAL, MPIU_MAX, pb->comm));
+  PetscCall(MPIU_Allreduce(dot, gdot, 4, MPIU_REAL, MPIU_SUM, pb->comm));
+  /* Aitken's relaxation of the fixed-point iteration lambda <- lambda + r (Irons and Tuck): the
+     first update of a step is the plain Uzawa one, the later ones lambda + omega r with
+     omega = -omega_prev r_prev.(r - r_prev)/|r - r_prev|^2, kept in [1, 100]; one factor for the
+     normal multipliers, one for the tangential ones (their rates differ: K_N against K_T) */
+  for (int k = 0; k < 2; k++)
+    if (pb->naug > 0 && gdot[2 * k + 1] > 0) omega[k] = PetscMin(PetscMax(-pb->omega[k] * gdot[2 * k] / gdot[2 * k + 1], 1.0), 100.0);
+  for (PetscInt i = 0; i < pb->ns; i++) {
+    const ContactState *st = &pb->cst_t[i];
+    PetscReal          *l  = pb->lam + 3 * i, *r = pb->lam_r + 3 * i;
+    const PetscBool     in = st->status != CONTACT_OPEN ? PETSC_TRUE : PETSC_FALSE;
+    r[0]                   = (in ? st->tN : 0) - l[0];
+    r[1]                   = (in ? st->tT[0] : 0) - l[1];
+    r[2]                   = (in ? st->tT[1] : 0) - l[2];
+    for (int k = 0; k < 3; k++) l[k] += omega[k > 0] * r[k];
+    /* back into the admissible set: lN >= 0, |lT| <= mu lN */
+    l[0] = PetscMax(l[0], 0);
+    {
+      const PetscReal nT = PetscSqrtReal(l[1] * l[1] + l[2] * l[2]), cap = pb->law.mu * l[0];
+      if (nT > cap) {
+        l[1] = nT > 0 ? l[1] * cap / nT : 0;
+        l[2] = nT > 0 ? l[2] * cap / nT : 0;
+      }
+    }
+  }
+  pb->omega[0] = omega[0];
+  pb->omega[1] = omega[1];
+  pb->naug++;
+  pb->aug_pen  = gl[0];
+  pb->aug_dlam = gl[2];
+  *maxpen      = gl[0];
+  *dlambda     = gl[2];
+  *converged   = (gl[0] <= pb->tol && gl[1] <= pb->tol && gl[2] <= pb->aug_mtol * gl[3]) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactAugmentTolerances(Contact pb, PetscReal *tol, PetscReal *mtol)
+{
+  PetscFunctionBeginUser;
+  *tol  = pb->tol;
+  *mtol = pb->aug_mtol;
+  PetscFunctionReturn(0);
+}
+
 
 /* Chattering: nodes whose contact status changed in the last Newton iteration although they carry
    a significant normal force, before (a node leaving) or after (a node entering): more than 1e-3
@@ -524,7 +810,7 @@ PetscErrorCode ContactGetToolResult(Contact pb, PetscInt t, PetscReal lambda, Co
 {
   const Tool *tl = &pb->tools[t];
   /* sums: force along dir, f (3), normal resultant (3), tangential resultant (3), active, stick, slip */
-  double      loc[13] = {0}, pen = 0, gl[13], gpen;
+  double      loc[15] = {0}, pen = 0, gl[15], gpen;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(r, sizeof(*r)));
@@ -550,8 +836,12 @@ PetscErrorCode ContactGetToolResult(Contact pb, PetscInt t, PetscReal lambda, Co
       }
     }
     pen = PetscMax(pen, -st->gap);
+    if (Pressed(st)) {
+      loc[13] += PetscMax(0, -st->gap);
+      loc[14] += 1;
+    }
   }
-  PetscCall(MPIU_Allreduce(loc, gl, 13, MPI_DOUBLE, MPI_SUM, pb->comm));
+  PetscCall(MPIU_Allreduce(loc, gl, 15, MPI_DOUBLE, MPI_SUM, pb->comm));
   PetscCall(MPIU_Allreduce(&pen, &gpen, 1, MPI_DOUBLE, MPI_MAX, pb->comm));
   r->force = gl[0];
   for (int k = 0; k < 3; k++) r->f[k] = gl[1 + k];
@@ -561,6 +851,9 @@ PetscErrorCode ContactGetToolResult(Contact pb, PetscInt t, PetscReal lambda, Co
   r->stick   = (PetscInt)gl[11];
   r->slip    = (PetscInt)gl[12];
   r->max_pen = gpen;
+  r->mean_pen = gl[14] > 0 ? gl[13] / gl[14] : 0;
+  r->augmentations = pb->naug;
+  r->dlambda = pb->aug_dlam;
   PetscFunctionReturn(0);
 }
 
@@ -587,7 +880,7 @@ PetscErrorCode ContactGetNodeFields(Contact pb, PetscReal *cg, PetscReal *cn, Pe
   PetscFunctionReturn(0);
 }
 
-#define CKPT_NCS 24 /* doubles per vertex for the contact state */
+#define CKPT_NCS 27 /* doubles per vertex for the contact state (24 before the multipliers) */
 
 PetscInt ContactCheckpointWidth(void) { return CKPT_NCS; }
 
@@ -597,7 +890,7 @@ PetscErrorCode ContactCheckpointPack(Contact pb, PetscReal *rows)
   PetscCall(PetscArrayzero(rows, CKPT_NCS * pb->mesh->nvo));
   for (PetscInt i = 0; i < pb->ns; i++) {
     const ContactState *s = &pb->cst_c[i];
-    const PetscReal     v[CKPT_NCS] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip};
+    const PetscReal     v[CKPT_NCS] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip, s->lN, s->lT[0], s->lT[1]};
     PetscCall(PetscArraycpy(rows + CKPT_NCS * pb->mesh->vrow[pb->slave[i]], v, CKPT_NCS));
   }
   PetscFunctionReturn(0);
@@ -631,7 +924,10 @@ PetscErrorCode ContactCheckpointUnpack(Contact pb, const PetscReal *rows, PetscR
     }
     s->gap  = d[15];
     s->tN   = d[16];
-    s->slip = d[23];
+    s->slip  = d[23];
+    s->lN    = d[24];
+    s->lT[0] = d[25];
+    s->lT[1] = d[26];
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, pb->comm));
   PetscCheck(bad == PETSC_MAX_INT, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: node id %" PetscInt_FMT " is a slave node here but not in the checkpoint", path, bad);

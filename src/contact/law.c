@@ -84,6 +84,11 @@ int ContactReturnMap(const ContactLaw *law, const double tTn[2], const double dg
 
 int ContactNodeEval(const ContactLaw *law, double g, const double n[3], const double *dn, const double s[3], const double tTn[2], const double ds[3], double R[3], double *K, double t1[3], double *tN, double tT[2])
 {
+  return ContactNodeEvalAug(law, 0.0, g, n, dn, s, tTn, ds, R, K, t1, tN, tT);
+}
+
+int ContactNodeEvalAug(const ContactLaw *law, double lN, double g, const double n[3], const double *dn, const double s[3], const double tTn[2], const double ds[3], double R[3], double *K, double t1[3], double *tN, double tT[2])
+{
   double t2[3], dg[2], Y[6];
   int    status;
 
@@ -96,10 +101,12 @@ int ContactNodeEval(const ContactLaw *law, double g, const double n[3], const do
     const double a[3] = {fabs(n[0]) < 0.9 ? 1.0 : 0.0, fabs(n[0]) < 0.9 ? 0.0 : 1.0, 0.0};
     ContactFrame(n, a, t1, t2);
   }
-  if (g > 0) return CONTACT_OPEN; /* touching (g = 0) is active, with zero force and full stiffness */
+  /* active when penetrated, or when the multiplier still holds the node (t_N = lN - K_N g > 0);
+     touching (g = 0) is active, with zero force (lN = 0) and full stiffness */
+  if (g > 0 && !(lN - law->KN * g > 0)) return CONTACT_OPEN;
 
   const double p = -g;
-  *tN            = law->KN * p;
+  *tN            = lN > 0 ? lN + law->KN * p : law->KN * p;
   dg[0]          = t1[0] * ds[0] + t1[1] * ds[1] + t1[2] * ds[2];
   dg[1]          = t2[0] * ds[0] + t2[1] * ds[1] + t2[2] * ds[2];
   status         = ContactReturnMap(law, tTn, dg, *tN, tT, K ? Y : NULL);

@@ -11,7 +11,9 @@
    active (nodes pressed against the tool), stick, slip (of those; counted with friction only),
    max_penetration, then dx, dy, dz (the tool's displacement), path_length (travelled along its
    path), fx, fy, fz (the resultant force the tool exerts on the modelled part), force_normal and
-   force_tangential (magnitudes of the normal and friction resultants). */
+   force_tangential (magnitudes of the normal and friction resultants), mean_penetration (of the
+   pressed nodes), augmentations (Newton solves of the step with -contact_augmented, 0 without)
+   and multiplier_change (the largest change of a nodal multiplier in the step's last update). */
 #include <stdio.h>
 #include <string.h>
 #include "results.h"
@@ -75,7 +77,7 @@ PetscErrorCode ContactHistoryOpen(Results *res, Problem *pb, PetscBool append)
   if (!ContactNumTools(pb->contact)) PetscFunctionReturn(0);
   PetscCall(CsvOpen(res, pb, "contact.csv", append, &res->chist));
   if (pb->rank) PetscFunctionReturn(0);
-  if (!append) fprintf(res->chist, "step,time,tool,travel,force,force_full,newton_its,active,stick,slip,max_penetration,dx,dy,dz,path_length,fx,fy,fz,force_normal,force_tangential\n");
+  if (!append) fprintf(res->chist, "step,time,tool,travel,force,force_full,newton_its,active,stick,slip,max_penetration,dx,dy,dz,path_length,fx,fy,fz,force_normal,force_tangential,mean_penetration,augmentations,multiplier_change\n");
   fflush(res->chist);
   PetscFunctionReturn(0);
 }
@@ -88,7 +90,7 @@ PetscErrorCode ContactHistoryWrite(Results *res, Problem *pb, PetscInt step, Pet
     PetscCall(ContactGetToolResult(pb->contact, t, time, &r));
     if (!pb->rank) {
       char      line[1024];
-      const int len = snprintf(line, sizeof(line), "%" PetscInt_FMT ",%.12g,%s,%.12g,%.12e,%.12e,%" PetscInt_FMT ",%d,%d,%d,%.6e,%.12g,%.12g,%.12g,%.12g,%.12e,%.12e,%.12e,%.12e,%.12e\n", step, (double)time, r.name, r.travel, r.force, r.force * (double)ContactSymmetry(pb->contact), its, (int)r.active, (int)r.stick, (int)r.slip, r.max_pen, r.shift[0], r.shift[1], r.shift[2], r.path, r.f[0], r.f[1], r.f[2], r.fn, r.ft);
+      const int len = snprintf(line, sizeof(line), "%" PetscInt_FMT ",%.12g,%s,%.12g,%.12e,%.12e,%" PetscInt_FMT ",%d,%d,%d,%.6e,%.12g,%.12g,%.12g,%.12g,%.12e,%.12e,%.12e,%.12e,%.12e,%.6e,%d,%.6e\n", step, (double)time, r.name, r.travel, r.force, r.force * (double)ContactSymmetry(pb->contact), its, (int)r.active, (int)r.stick, (int)r.slip, r.max_pen, r.shift[0], r.shift[1], r.shift[2], r.path, r.f[0], r.f[1], r.f[2], r.fn, r.ft, r.mean_pen, (int)r.augmentations, r.dlambda);
       fwrite(line, 1, (size_t)len, res->chist);
       fflush(res->chist);
     }

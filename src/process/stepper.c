@@ -134,7 +134,11 @@ static PetscErrorCode NewtonUpdate(SNES snes, PetscInt it)
 
 static const char *FailureCause(const Stepper *st, const Problem *pb, SNESConvergedReason reason, char *buf, size_t len)
 {
-  if (reason == SNES_DIVERGED_DTOL && st->stalled)
+  if (st->aug_failed) {
+    PetscReal tol, mtol;
+    (void)ContactAugmentTolerances(pb->contact, &tol, &mtol);
+    snprintf(buf, len, "augmented Lagrangian: penetration %.3g after %d loops (tolerance %.3g, -contact_augmented_tol), largest multiplier change %.3g (-contact_augmented_multiplier_tol %g), -contact_augmented_max %d", (double)st->aug_pen, (int)st->aug_loops, (double)tol, (double)st->aug_dlam, (double)mtol, (int)st->aug_loops);
+  } else if (reason == SNES_DIVERGED_DTOL && st->stalled)
     snprintf(buf, len, "Newton stalled (|R| %.3g did not fall below %g times its value %d iterations earlier, -newton_stall_its)", (double)st->stall_fnorm, (double)st->stall_factor, (int)st->stall_its);
   else if (reason == SNES_DIVERGED_INNER && pb->bad_status < 0) snprintf(buf, len, "contact chattering: %d nodes still entering or leaving contact at the last Newton iteration (node id %d)", (int)-pb->bad_status, (int)pb->bad_cell_id);
   else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN || pb->ndomain_err) {
@@ -204,8 +208,9 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
 
   while (lam_c < 1.0 - 1e-12) {
     SNESConvergedReason reason;
-    PetscInt            its = 0, cuts = 0, nres;
-    PetscReal           lam_t;
+    PetscInt            its = 0, its_max = 0, cuts = 0, nres;
+    PetscReal           lam_t, r0 = 0;
+    const PetscBool     aug = ContactAugmented(pb->contact);
 
     PetscCheck(step < st->max_steps, pb->comm, PETSC_ERR_NOT_CONVERGED, "-load_max_steps %" PetscInt_FMT " reached at load %g", st->max_steps, (double)lam_c);
     for (;;) {
@@ -229,22 +234,55 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       pb->lambda     = lam_t;
       pb->bad_status = 0;
       PetscCall(SeedFrames(pb, pb->U, lam_t));
-      PetscCall(SNESSolve(snes, NULL, pb->U));
-      PetscCall(SNESGetConvergedReason(snes, &reason));
-      PetscCall(SNESGetIterationNumber(snes, &its));
-      /* converged: one more evaluation at the solution (trial states, cell info, reactions) */
-      if (reason > 0) PetscCall(ProblemEvaluate(pb, pb->U, lam_t));
-      if (reason > 0 && contact && st->chatter_check && its > 0) {
-        /* the active set must have settled: a node entering or leaving contact with a
-           significant force in the last iteration means the step is not converged */
-        PetscInt nch, nodeid;
-        PetscCall(ContactChatter(pb->contact, &nch, &nodeid));
-        if (nch) {
-          reason         = SNES_DIVERGED_INNER; /* reported below as chattering */
-          pb->bad_status = -nch;
-          pb->bad_cell_id = nodeid;
+      its             = 0;
+      its_max         = 0;
+      st->aug_failed  = PETSC_FALSE;
+      st->aug_loops   = 0;
+      PetscReal atol0 = 0, rtol = 0, stol = 0;
+      PetscInt  maxit = 0, maxf = 0;
+      PetscBool tol_changed = PETSC_FALSE;
+      /* Newton solves at fixed contact multipliers; with -contact_augmented the multipliers are
+         updated after each (ContactAugment) until the penetration is below the tolerance */
+      for (;;) {
+        PetscInt  its1;
+        PetscBool aconv = PETSC_FALSE;
+        PetscCall(SNESSolve(snes, NULL, pb->U));
+        PetscCall(SNESGetConvergedReason(snes, &reason));
+        PetscCall(SNESGetIterationNumber(snes, &its1));
+        if (st->aug_loops == 0) r0 = rhist[0];
+        its += its1;
+        its_max = PetscMax(its_max, its1);
+        /* converged: one more evaluation at the solution (trial states, cell info, reactions) */
+        if (reason > 0) PetscCall(ProblemEvaluate(pb, pb->U, lam_t));
+        if (reason > 0 && contact && st->chatter_check && its1 > 0) {
+          /* the active set must have settled: a node entering or leaving contact with a
+             significant force in the last iteration means the step is not converged */
+          PetscInt nch, nodeid;
+          PetscCall(ContactChatter(pb->contact, &nch, &nodeid));
+          if (nch) {
+            reason         = SNES_DIVERGED_INNER; /* reported below as chattering */
+            pb->bad_status = -nch;
+            pb->bad_cell_id = nodeid;
+          }
+        }
+        if (reason <= 0 || !aug) break;
+        st->aug_loops++;
+        PetscCall(ContactAugment(pb->contact, &aconv, &st->aug_pen, &st->aug_dlam));
+        if (aconv) break;
+        if (st->aug_loops >= ContactAugmentedMax(pb->contact)) {
+          reason         = SNES_DIVERGED_INNER; /* reported below as the augmentation's failure */
+          st->aug_failed = PETSC_TRUE;
+          break;
+        }
+        if (st->aug_loops == 1) {
+          /* the later solves of the step are converged to the accuracy the first one reached:
+             |R| below rtol times the first solve's initial residual (or their own rtol) */
+          PetscCall(SNESGetTolerances(snes, &atol0, &rtol, &stol, &maxit, &maxf));
+          PetscCall(SNESSetTolerances(snes, PetscMax(atol0, rtol * r0), rtol, stol, maxit, maxf));
+          tol_changed = PETSC_TRUE;
         }
       }
+      if (tol_changed) PetscCall(SNESSetTolerances(snes, atol0, rtol, stol, maxit, maxf));
       if (reason > 0) break;
       {
         char buf[256];
@@ -265,10 +303,28 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     step++;
     total_its += its;
     PetscCall(SNESGetConvergenceHistory(snes, NULL, NULL, &nres));
-    PetscCall(ResultsWriteStep(res, pb, step, lam_c, its, rhist[0], rhist[PetscMax(nres - 1, 0)], lam_c >= 1.0 - 1e-12 ? PETSC_TRUE : PETSC_FALSE));
+    PetscCall(ResultsWriteStep(res, pb, step, lam_c, its, r0, rhist[PetscMax(nres - 1, 0)], lam_c >= 1.0 - 1e-12 ? PETSC_TRUE : PETSC_FALSE));
     PetscCall(PetscTime(&t1));
-    PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0));
-    if (its <= st->grow_its) dl = PetscMin(dl * st->grow, st->dt_max);
+    {
+      char cline[160] = "";
+      if (contact) { /* penetration over all tools: the largest, and the mean of the pressed nodes */
+        PetscReal pmax = 0, psum = 0;
+        PetscInt  npr  = 0;
+        for (PetscInt t = 0; t < ContactNumTools(pb->contact); t++) {
+          ContactToolResult r;
+          PetscCall(ContactGetToolResult(pb->contact, t, lam_c, &r));
+          pmax = PetscMax(pmax, r.max_pen);
+          psum += r.mean_pen * r.active;
+          npr += r.active;
+        }
+        if (aug) PetscCall(PetscSNPrintf(cline, sizeof(cline), "  penetration %.3e mean %.3e  augmentations %" PetscInt_FMT "  multiplier change %.3e", (double)pmax, (double)(npr ? psum / npr : 0), st->aug_loops, (double)st->aug_dlam));
+        else PetscCall(PetscSNPrintf(cline, sizeof(cline), "  penetration %.3e mean %.3e", (double)pmax, (double)(npr ? psum / npr : 0)));
+      }
+      PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s%s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0, cline));
+    }
+    /* growth: on the Newton iterations of the hardest solve of the step (all of them without
+       augmentation) */
+    if (its_max <= st->grow_its) dl = PetscMin(dl * st->grow, st->dt_max);
     if (res->checkpoint_interval > 0 && (step % res->checkpoint_interval == 0 || lam_c >= 1.0 - 1e-12)) {
       ci.step       = step;
       ci.lambda     = lam_c;

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Augmented Lagrangian contact (-contact_augmented) and the automatic penalty
+# (-contact_penalty_normal auto): the Coulomb law in slip, the exact Jacobian at fixed multipliers
+# in stick and slip, 1 and 2 ranks, a restart in the middle of an augmented run, the penetration
+# below the tolerance.
+set -u
+cd "$(dirname "$0")/.."
+. tests/lib.sh
+OUT=$(test_out auglag)
+AUG="-contact_augmented -contact_augmented_tol 1e-4"
+
+# 1. block dragged on a plane: slip |t_T| = mu t_N to 1e-8, penetration below the tolerance,
+#    at 1 and 2 ranks (the same histories to 8 digits)
+atrito 1 drag1 -options_file cases/block_plane_drag.opts -output_interval 0 $AUG && pycheck auglag_drag "$OUT/drag1" 0.3 1e-4 25 "np=1"
+atrito 2 drag2 -options_file cases/block_plane_drag.opts -output_interval 0 $AUG && pycheck auglag_drag "$OUT/drag2" 0.3 1e-4 25 "np=2"
+compare "$OUT/drag1/contact.csv" "$OUT/drag2/contact.csv" 8 "augmented block on a plane: contact history at np=1 and np=2"
+compare "$OUT/drag1/history.csv" "$OUT/drag2/history.csv" 8 "augmented block on a plane: reactions at np=1 and np=2"
+
+# 2. the exact Jacobian with the multipliers held fixed, in stick and in slip, plane and sphere
+for tool in plane sphere; do
+  name=jac_$tool
+  if [ $tool = plane ]; then opts="-options_file cases/block_plane_drag.opts -box_cells 2,2,1"
+  else opts="-options_file cases/block_sphere.opts -box_cells 4,4,1"; fi
+  # shellcheck disable=SC2086
+  atrito 1 $name $opts -output_interval 0 $AUG -snes_test_jacobian &&
+    pycheck snes_test_jacobian "$OUT/$name.log" 10 1e-5 "augmented Lagrangian on a $tool" --contact "$OUT/$name"
+done
+
+# 3. block and sphere with friction at 1 and 2 ranks
+atrito 1 sph1 -options_file cases/block_sphere.opts -output_interval 0 $AUG
+atrito 2 sph2 -options_file cases/block_sphere.opts -output_interval 0 $AUG
+compare "$OUT/sph1/contact.csv" "$OUT/sph2/contact.csv" 8 "augmented block and sphere: contact history at np=1 and np=2"
+
+# 4. restart in the middle of an augmented run (the multipliers are in the checkpoint): the same
+#    rows as the uninterrupted run, to 10 digits at 1 rank and 8 digits continued on 2 ranks
+CASE="-options_file cases/block_sphere.opts -load_steps 20 -load_dt_max 0.05 -output_interval 0 $AUG"
+# shellcheck disable=SC2086
+atrito 1 ref $CASE
+# shellcheck disable=SC2086
+atrito_rc 1 stop $CASE -checkpoint_interval 3 -load_max_steps 8
+# shellcheck disable=SC2086
+if $MPI 1 $A $CASE -output_dir "$OUT/stop" -checkpoint_interval 3 -restart "$OUT/stop/checkpoint.h5" >"$OUT/stop2.log" 2>&1 </dev/null; then
+  grep -q "restart from .*: step 6," "$OUT/stop2.log" && ok "augmented run restarted from the checkpoint of step 6" || not_ok "augmented restart did not start from step 6"
+  compare "$OUT/ref/contact.csv" "$OUT/stop/contact.csv" 10 "augmented run stopped and restarted (np=1): contact.csv"
+  compare "$OUT/ref/history.csv" "$OUT/stop/history.csv" 10 "augmented run stopped and restarted (np=1): history.csv"
+else not_ok "augmented restart failed"; tail -n 5 "$OUT/stop2.log" | indent; fi
+# shellcheck disable=SC2086
+atrito_rc 1 np $CASE -checkpoint_interval 4 -load_max_steps 9
+# shellcheck disable=SC2086
+if $MPI 2 $A $CASE -output_dir "$OUT/np" -restart "$OUT/np/checkpoint.h5" >"$OUT/np2.log" 2>&1 </dev/null; then
+  compare "$OUT/ref/contact.csv" "$OUT/np/contact.csv" 8 "augmented run, 1-rank checkpoint continued on 2 ranks: contact.csv"
+else not_ok "augmented restart on 2 ranks failed"; tail -n 5 "$OUT/np2.log" | indent; fi
+
+# 5. an augmentation that cannot converge in its limit is a failed step, cut back, with the cause
+atrito_rc 1 augfail -options_file cases/block_plane_drag.opts -output_interval 0 -contact_augmented -contact_augmented_tol 1e-9 -contact_augmented_max 2 -load_max_cuts 1
+msg=$(grep -o "atrito: error: step .*augmented Lagrangian: penetration .* after 2 loops.*" "$OUT/augfail.log" | head -1)
+[ $RC -ne 0 ] && [ -n "$msg" ] && grep -q "augmented Lagrangian: penetration .*; retrying" "$OUT/augfail.log" &&
+  ok "augmentation not converged: step cut back, then the run stops naming it: ${msg:0:140}" || not_ok "augmentation failure (exit $RC)"
+
+# 6. the automatic penalty: printed per node at set-up; the seed hemisphere runs with it
+atrito 1 auto -options_file cases/hemisphere_frictionless.opts -output_interval 0 -contact_penalty_normal auto &&
+  line=$(grep -o "contact: automatic penalty.*" "$OUT/auto.log") && [ -n "$line" ] &&
+  ok "automatic penalty on the seed hemisphere, $(grep -o 'done: .*' "$OUT/auto.log"): ${line:0:120}" || not_ok "automatic penalty run"
+
+# 7. a stiff block (E = 2e5) pressed and dragged on a plane with no user penalty (automatic K_N and
+#    K_T) and the augmented Lagrangian: the penetration below the tolerance, the Coulomb law in slip;
+#    the Newton iterations and solves per step reported
+atrito 1 stiff -options_file cases/block_plane_drag.opts -output_interval 0 -material_E 2e5 -contact_penalty_normal auto -contact_penalty_tangential auto -contact_augmented -contact_augmented_tol 1e-5 &&
+  pycheck auglag_drag "$OUT/stiff" 0.3 1e-5 25 "stiff block, E = 2e5, automatic penalty" &&
+  $PY -c "import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); print('    Newton iterations per step', [int(x['newton_its']) for x in r], 'solves', [int(x['augmentations']) for x in r])" "$OUT/stiff/contact.csv"
