@@ -38,6 +38,8 @@ PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c);
 PetscErrorCode ContactSetFromOptions(Contact c);
 /* the sets whose nodes need a tributary area (-contact_penalty_per_area), else n = 0 */
 PetscErrorCode ContactGetAreaSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN]);
+/* the body's Young's modulus, for the automatic penalty (-contact_penalty_normal auto); before SetUp */
+PetscErrorCode ContactSetYoungModulus(Contact c, PetscReal E);
 PetscErrorCode ContactSetUp(Contact c, const Mesh *m);
 PetscErrorCode ContactDestroy(Contact *c);
 PetscInt       ContactNumTools(Contact c);

@@ -48,6 +48,9 @@ PetscErrorCode MaterialCreate(MPI_Comm comm, Material *mat);
 PetscErrorCode MaterialSetFromOptions(Material mat);
 /* valid after MaterialSetFromOptions; owned by mat */
 PetscErrorCode MaterialGetKernel(Material mat, const MaterialKernel **k);
+/* Young's modulus of the elastic response (for penalties scaled by the body's stiffness); 0 when
+   the type does not know it */
+PetscErrorCode MaterialGetYoungModulus(Material mat, PetscReal *E);
 PetscErrorCode MaterialView(Material mat, PetscViewer v);
 PetscErrorCode MaterialDestroy(Material *mat);
 #endif

@@ -9,6 +9,8 @@ struct _p_Material {
   char           type_name[64]; /* "" until a type is set */
   MaterialKernel kernel;        /* kernel.ctx points into data */
   void          *data;          /* the type's parameters */
+  PetscReal      modulus;       /* Young's modulus of the elastic response, set by the type's
+                                   SetFromOptions (0: the type does not know it, e.g. a UMAT) */
   struct {
     PetscErrorCode (*setfromoptions)(Material); /* reads the type's options in its own PetscOptionsBegin block */
     PetscErrorCode (*view)(Material, PetscViewer);

@@ -89,6 +89,11 @@ static PetscErrorCode Run(PetscBool *stop)
     }
     PetscCall(PetscLogStagePop());
     PetscCall(PetscLogStagePush(stage_setup));
+    {
+      PetscReal E;
+      PetscCall(MaterialGetYoungModulus(material, &E));
+      PetscCall(ContactSetYoungModulus(contact, E));
+    }
     PetscCall(ContactSetUp(contact, &mesh));
     PetscCall(ProblemSetUp(&pb, &mesh, &bcs, contact, material, element));
     PetscCall(PetscLogStagePop());

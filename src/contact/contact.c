@@ -49,6 +49,7 @@ struct _p_Contact {
   PetscBool  fd;           /* per-node finite-difference tangent instead of the analytic one  */
   PetscReal  search_opt;   /* pairing: skip a tool whose box is farther than this (<= 0: auto) */
   PetscReal  symmetry;     /* multiplicity of the model (0: from the mesh)                    */
+  PetscReal  E_body;       /* the body's Young's modulus (ContactSetYoungModulus; 0: unknown)   */
   PetscBool  kauto, ktauto;/* K_N (K_T) per node from the elements under it (auto)              */
   PetscReal  kfactor, kratio;
   PetscBool  aug;          /* augmented Lagrangian (Uzawa updates between Newton solves)      */
@@ -248,6 +249,13 @@ PetscErrorCode ContactGetAreaSets(Contact c, PetscInt *n, char (**sets)[ATRITO_N
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ContactSetYoungModulus(Contact c, PetscReal E)
+{
+  PetscFunctionBeginUser;
+  c->E_body = E;
+  PetscFunctionReturn(0);
+}
+
 PetscInt ContactNumTools(Contact c) { return c->ntools; }
 PetscInt ContactNumSlaves(Contact c) { return c->ns; }
 PetscReal ContactSymmetry(Contact c) { return c->symmetry; }
@@ -384,11 +392,10 @@ PetscErrorCode ContactSetUp(Contact pb, const Mesh *m)
     pb->hmin = hmin < PETSC_MAX_REAL ? hmin : 0;
     if (pb->kauto) {
       PetscReal E, kmin = PETSC_MAX_REAL, kmax = 0;
-      PetscBool set;
       PetscCheck(!nzero, pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, pb->set[0], pb->nset > 1 ? ", ..." : "");
-      /* the body's elastic modulus, as the material reads it */
-      PetscCall(PetscOptionsGetReal(NULL, NULL, "-material_E", &E, &set));
-      PetscCheck(set && E > 0 && PetscIsNormalReal(E), pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto needs the elastic modulus -material_E");
+      /* the body's Young's modulus, from its material (ContactSetYoungModulus) */
+      E = pb->E_body;
+      PetscCheck(E > 0 && PetscIsNormalReal(E), pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto needs the body's Young's modulus, which its material does not give (a user material: give -contact_penalty_normal a value)");
       PetscCall(PetscMalloc2(pb->ns, &pb->kn, pb->ns, &pb->kt));
       for (PetscInt i = 0; i < pb->ns; i++) {
         pb->kn[i] = pb->kfactor * E * m->varea[pb->slave[i]] / h[i];

@@ -647,6 +647,7 @@ static PetscErrorCode MaterialSetFromOptions_Hill48(Material mat)
     PetscCheck(Hill48ParamsSetup(hp) == HILL48_OK, comm, PETSC_ERR_USER_INPUT, "invalid Hill 48 parameters");
   }
   PetscOptionsEnd();
+  mat->modulus = hp->base.E;
   PetscFunctionReturn(0);
 }
 

@@ -347,6 +347,7 @@ static PetscErrorCode MaterialSetFromOptions_J2(Material mat)
   PetscOptionsBegin(comm, "material_", "Material j2: finite-strain J2 plasticity (log strains, isotropic hardening)", "Material");
   PetscCall(J2ParamsSetFromOptions(PetscOptionsObject, comm, mp));
   PetscOptionsEnd();
+  mat->modulus = mp->E;
   PetscFunctionReturn(0);
 }
 

@@ -110,6 +110,15 @@ PetscErrorCode MaterialSetFromOptions(Material mat)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode MaterialGetYoungModulus(Material mat, PetscReal *E)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(mat && E, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "null pointer argument");
+  PetscCheck(mat->type_name[0], mat->comm, PETSC_ERR_ORDER, "material has no type: call MaterialSetFromOptions() first");
+  *E = mat->modulus;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MaterialGetKernel(Material mat, const MaterialKernel **k)
 {
   PetscFunctionBeginUser;
