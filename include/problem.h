@@ -47,6 +47,8 @@ typedef struct {
   PetscInt  ndomain_err;   /* failed element or node evaluations in the last assembly   */
   PetscInt  bad_cell_id;   /* source id of the first failing element, for messages      */
   PetscInt  bad_status;
+  PetscBool cutback;       /* an element's material asked for a smaller increment (a UMAT's PNEWDT
+                              < 1) since the flag was last cleared: the step is cut, not searched */
 
   /* coordinate assembly: offset of each element block in coo_v (the contact blocks last) */
   PetscCount  *coo_off;

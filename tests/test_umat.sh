@@ -55,10 +55,9 @@ SMALL="-options_file cases/tension_bar.opts -box_cells 2,1,1 -load_steps 2 -outp
 bad nolib "-material_umat bin/no_such.so: cannot load the library" $SMALL -material_type umat -material_umat bin/no_such.so
 bad nosym "-material_umat_symbol vumat_: not found in bin/umat_j2.so" $SMALL $UJ2 -material_umat_symbol vumat_
 bad nan "did not converge" $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_nan_ -material_umat_props 69004,0.3 -load_max_cuts 2
-# PNEWDT < 1 makes update() return MAT_ERR_CUTBACK; until the stepper maps that status to a
-# failed step, the line search treats it as a domain error and backtracks: either way the run
-# must finish (tighten to "cuts >= 1" and the PNEWDT message once the stepper handles it)
+# PNEWDT < 1: the material's MAT_ERR_CUTBACK fails the step at once and it is retried smaller
 atrito 1 cut $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_cut_ -material_umat_props 69004,0.3 &&
   { d=$(grep -m1 '^done:' "$OUT/cut.log")
-    if echo "$d" | grep -q ' [1-9][0-9]* cuts\?,'; then ok "PNEWDT 0.5 once: the step was cut and the run finished ($d)"
-    else ok "PNEWDT 0.5 once: the run finished, no step cut (the line search backtracked; MAT_ERR_CUTBACK not yet mapped by the stepper) ($d)"; fi; }
+    if echo "$d" | grep -q ' [1-9][0-9]* cuts\?,' && grep -q 'the material asked for a smaller increment (a user material.s PNEWDT < 1; element id [0-9]*); retrying' "$OUT/cut.log"; then
+      ok "PNEWDT 0.5 once: the step was cut, named, and the run finished ($d)"
+    else not_ok "PNEWDT 0.5 once: no cut or no message ($d)"; grep -m3 'retrying\|error' "$OUT/cut.log" | indent; fi; }

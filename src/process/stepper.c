@@ -103,6 +103,10 @@ static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, P
 
   PetscFunctionBeginUser;
   PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, NULL));
+  if (pb->pb->cutback) { /* the material asked for a smaller increment: the step fails at once */
+    *reason = SNES_DIVERGED_FUNCTION_DOMAIN;
+    PetscFunctionReturn(0);
+  }
   if (it == 0) pb->stalled = PETSC_FALSE;
   if (it < 256) pb->fnorm_hist[it] = fnorm;
   if (*reason == SNES_CONVERGED_ITERATING && w > 0 && it >= w && it < 256 && !(fnorm < pb->stall_factor * pb->fnorm_hist[it - w])) {
@@ -141,6 +145,7 @@ static const char *FailureCause(const Stepper *st, const Problem *pb, SNESConver
   } else if (reason == SNES_DIVERGED_DTOL && st->stalled)
     snprintf(buf, len, "Newton stalled (|R| %.3g did not fall below %g times its value %d iterations earlier, -newton_stall_its)", (double)st->stall_fnorm, (double)st->stall_factor, (int)st->stall_its);
   else if (reason == SNES_DIVERGED_INNER && pb->bad_status < 0) snprintf(buf, len, "contact chattering: %d nodes still entering or leaving contact at the last Newton iteration (node id %d)", (int)-pb->bad_status, (int)pb->bad_cell_id);
+  else if (pb->cutback) snprintf(buf, len, "the material asked for a smaller increment (a user material's PNEWDT < 1; element id %d)", (int)pb->bad_cell_id);
   else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN || pb->ndomain_err) {
     if (pb->bad_status == MAT_ERR_RETURNMAP) snprintf(buf, len, "the local return map did not converge (element id %d)", (int)pb->bad_cell_id);
     else if (pb->bad_status == ATRITO_ERR_PROJECTION) snprintf(buf, len, "the projection of a slave node on a tool failed");
@@ -216,7 +221,8 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     for (;;) {
       dl    = PetscMin(dl, 1.0 - lam_c);
       lam_t = (1.0 - lam_c - dl < 1e-12) ? 1.0 : lam_c + dl; /* the last step ends exactly at 1 */
-      pb->lambda = lam_t;
+      pb->lambda  = lam_t;
+      pb->cutback = PETSC_FALSE; /* a request of the predictor's evaluations counts for this attempt */
       PetscCall(VecCopy(pb->Uc, pb->U));
       /* a fresh factorisation for every step, so that a step depends only on the committed state:
          a run restarted from a checkpoint repeats the same iterations (PETSc's MUMPS interface:

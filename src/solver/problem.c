@@ -21,7 +21,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
   const int            nen = ek->nen, nd = 3 * ek->nen;
   const PetscScalar   *u;
   PetscScalar         *f = NULL;
-  PetscInt             nfail = 0, badid = PETSC_MAX_INT, badst = 0, cfail = 0;
+  PetscInt             nfail = 0, badid = PETSC_MAX_INT, badst = 0, cfail = 0, ncut = 0;
   double               ke[MAX_EDOF * MAX_EDOF], kc[MAX_EDOF * MAX_EDOF], X[MAX_EDOF], ue[MAX_EDOF], fe[MAX_EDOF];
   PetscInt             gfail;
 
@@ -46,6 +46,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
     const int st = ek->kernel(ek->ctx, pb->mk, X, ue, pb->hist_c + (size_t)e * pb->nhc, fe, J ? ke : NULL, pb->hist_t + (size_t)e * pb->nhc, want_info ? &pb->einfo[e] : NULL);
     if (st != MAT_OK) {
       nfail++;
+      ncut += st == MAT_ERR_CUTBACK;
       if (m->elem_id[e] < badid) {
         badid = m->elem_id[e];
         badst = st;
@@ -91,6 +92,8 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pair[1], 1, MPIU_INT, MPI_MAX, pb->comm));
     pb->bad_cell_id = gmin;
     pb->bad_status  = pair[1];
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncut, 1, MPIU_INT, MPI_SUM, pb->comm));
+    if (ncut) pb->cutback = PETSC_TRUE;
   }
   PetscFunctionReturn(0);
 }
