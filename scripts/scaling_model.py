@@ -67,6 +67,8 @@ def measure(work):
     for name, extra in (("lu", []), ("gamg", ["-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-8", "-ksp_converged_reason"])):
         p = subprocess.run(["mpiexec", "-n", "1"] + base + ["-output_dir", os.path.join(work, name)] + extra, capture_output=True, text=True, env=env, cwd=ROOT)
         log = p.stdout
+        if not re.search(r"mesh: \d+ vertices", log) or "-load_max_steps 3 reached" not in p.stdout + p.stderr:
+            sys.exit(f"scaling_model: the {name} run failed (exit {p.returncode}):\n" + (log + p.stderr)[-2000:])
         ncell = int(re.search(r"mesh: \d+ vertices, (\d+) hexahedra", log).group(1))
         nslave = int(re.search(r"contact: (\d+) slave nodes", log).group(1))
         res[name] = dict(log=log, ncell=ncell, nslave=nslave, rc=p.returncode)
