@@ -189,7 +189,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     }
   }
   {
-    char      buf[64] = "1e5";
+    char      buf[64] = "auto"; /* a user who gives no penalty gets one from the mesh and the material */
     PetscBool set;
     PetscCall(PetscOptionsString("-contact_penalty_normal", "Normal penalty K_N (force per length, per node; per unit area with -contact_penalty_per_area), or auto: per node from the elements under it", NULL, buf, buf, sizeof(buf), NULL));
     PetscCall(PenaltyValue(comm, "-contact_penalty_normal", buf, &c->kauto, &c->law.KN));
@@ -205,7 +205,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   PetscCheck(c->kfactor > 0 && PetscIsNormalReal(c->kfactor), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor %g must be positive", (double)c->kfactor);
   PetscCheck(c->kratio > 0 && PetscIsNormalReal(c->kratio), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_ratio %g must be positive", (double)c->kratio);
   PetscCall(PetscOptionsBool("-contact_penalty_per_area", "K_N and K_T are per unit area (force per length^3); each slave node's are scaled by its tributary area on the contact faces", NULL, c->per_area, &c->per_area, NULL));
-  PetscCheck(!(c->per_area && c->kauto), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area does not combine with -contact_penalty_normal auto (the automatic penalty is per node already)");
+  PetscCheck(!(c->per_area && c->kauto), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area needs -contact_penalty_normal and -contact_penalty_tangential values per unit area (the automatic penalty, auto, is per node already)");
   c->aug_tol     = -1;
   c->aug_tol_rel = -1;
   c->aug_mtol    = 1e-2;
