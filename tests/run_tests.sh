@@ -40,6 +40,7 @@ run lu-np2          mpiexec -n 2 bin/test_lu
 run solver          bash tests/test_solver.sh
 run contact         bash tests/test_contact.sh
 run benchmark       bash tests/test_benchmark.sh
+run facets          bash tests/test_facets.sh
 run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh
 run options         bash tests/test_options.sh

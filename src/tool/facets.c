@@ -308,8 +308,9 @@ static void EdgeClosest(const FacetsData *m, int f, int e, const double y[3], do
   else *uo = 0.0, *vo = 1.0 - t;
 }
 
-/* every facet whose plane triangle is closer than r2 (squared), up to max, in list; returns the count */
-static int TreeCollect(const FacetsData *m, const double y[3], double r2, int *list, int max)
+/* every facet whose plane triangle is closer than r2 (squared), up to max, in list with its squared
+   distance, in increasing order (then facet index); returns the count */
+static int TreeCollect(const FacetsData *m, const double y[3], double r2, Best *list, int max)
 {
   int stack[128], ns = 0, n = 0;
   stack[ns++] = 0;
@@ -318,9 +319,17 @@ static int TreeCollect(const FacetsData *m, const double y[3], double r2, int *l
     if (BoxDist2(nd, y) > r2) continue;
     if (nd->count > 0) {
       for (int k = nd->first; k < nd->first + nd->count; k++) {
-        double u, v;
-        int    reg;
-        if (TriClosest(m, k, y, &u, &v, &reg) <= r2 && n < max) list[n++] = k;
+        double       u, v;
+        int          reg;
+        const double d2 = TriClosest(m, k, y, &u, &v, &reg);
+        if (d2 > r2 || n >= max) continue;
+        int j = n++;
+        while (j > 0 && Better(d2, k, &list[j - 1])) {
+          list[j] = list[j - 1];
+          j--;
+        }
+        list[j].d2 = d2;
+        list[j].f  = k;
       }
     } else if (ns < 127) {
       stack[ns++] = nd->first;
@@ -373,17 +382,18 @@ static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], 
   int    reg, f = b->f;
   TriClosest(m, f, y, &u, &v, &reg);
   if (m->smooth) {
-    int          list[256], edge = -1;
+    Best         list[256], bb = {HUGE_VAL, INT_MAX};
+    int          edge = -1;
     const double r  = sqrt(b->d2) + 2.0 * m->dev;
     const int    nc = TreeCollect(m, y, r * r * (1.0 + 1e-12), list, 256);
-    Best         bb = {HUGE_VAL, INT_MAX};
     for (int k = 0; k < nc; k++) {
       double uk = 0.0, vk = 0.0;
       int    ek = -1;
-      const double d2 = PatchClosestLocal(m, list[k], y, &uk, &vk, &ek);
-      if (Better(d2, list[k], &bb)) {
+      if (sqrt(list[k].d2) - m->dev > sqrt(bb.d2) * (1.0 + 1e-12)) break; /* no patch farther on can be closer */
+      const double d2 = PatchClosestLocal(m, list[k].f, y, &uk, &vk, &ek);
+      if (Better(d2, list[k].f, &bb)) {
         bb.d2 = d2;
-        bb.f  = list[k];
+        bb.f  = list[k].f;
         u     = uk;
         v     = vk;
         edge  = ek;

@@ -970,10 +970,30 @@ PetscErrorCode FacetsBuild(MPI_Comm comm, Patch *p, const char path[], FacetsRaw
   PetscCall(PetscFree(raw->F));
   PetscCall(PetscFree(raw->fid));
   m->F = F;
+  { /* vertices renumbered in the order the facets first use them: a leaf's vertices lie together */
+    int    *map;
+    double *V2;
+    int     nv2 = 0;
+    PetscCall(PetscMalloc1((size_t)nv, &map));
+    PetscCall(PetscMalloc1(3 * (size_t)nv, &V2));
+    for (int k = 0; k < nv; k++) map[k] = -1;
+    for (int k = 0; k < 3 * nf; k++) {
+      if (map[F[k]] < 0) {
+        map[F[k]] = nv2;
+        for (int i = 0; i < 3; i++) V2[3 * nv2 + i] = m->V[3 * F[k] + i];
+        nv2++;
+      }
+      F[k] = map[F[k]];
+    }
+    PetscCall(PetscFree(map));
+    PetscCall(PetscFree(m->V));
+    m->V  = V2;
+    m->nv = nv2; /* vertices no facet uses are dropped */
+  }
   /* edges: neighbours, orientation, manifold */
   PetscCall(PetscMalloc1(3 * (size_t)nf, &E));
   PetscCall(PetscMalloc1(3 * (size_t)nf, &m->adj));
-  PetscCall(PetscCalloc1((size_t)nv, &m->vbnd));
+  PetscCall(PetscCalloc1((size_t)m->nv, &m->vbnd));
   for (int f = 0; f < nf; f++)
     for (int e = 0; e < 3; e++) {
       const int a = F[3 * f + e], b = F[3 * f + (e + 1) % 3];
@@ -1098,7 +1118,7 @@ PetscErrorCode FacetsBuild(MPI_Comm comm, Patch *p, const char path[], FacetsRaw
   }
   {
     double b[6] = {HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL};
-    for (int k = 0; k < nv; k++)
+    for (int k = 0; k < m->nv; k++)
       for (int i = 0; i < 3; i++) {
         b[2 * i]     = fmin(b[2 * i], m->V[3 * k + i]);
         b[2 * i + 1] = fmax(b[2 * i + 1], m->V[3 * k + i]);
