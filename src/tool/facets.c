@@ -76,31 +76,49 @@ static void NagataCoefficient(const double d[3], const double na[3], const doubl
 
 /* The facet's surface: the plane triangle (raw), or Nagata's quadratic patch
    x = P0 w + P1 u + P2 v - c01 u w - c12 u v - c20 v w (w = 1 - u - v) through its curved edges
-   (an open edge, or one sharper than the feature angle, stays straight) */
-static void FacetEvalLocal(const FacetsData *m, int f, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv)
+   (a sharp edge, one whose sides' normals differ by more than the feature angle, stays straight);
+   its data set once per facet (FacetGeomSet) and evaluated (FacetGeomEval) */
+typedef struct {
+  double P0[3], e1[3], e2[3], c[3][3];
+} FacetGeom;
+
+static void FacetGeomSet(const FacetsData *m, int f, FacetGeom *g)
 {
-  double P[3][3], c[3][3] = {{0}}, e1[3], e2[3];
-  const double w = 1.0 - u - v;
+  double P[3][3];
   for (int k = 0; k < 3; k++) Corner(m, f, k, P[k]);
   for (int i = 0; i < 3; i++) {
-    e1[i] = P[1][i] - P[0][i];
-    e2[i] = P[2][i] - P[0][i];
+    g->P0[i] = P[0][i];
+    g->e1[i] = P[1][i] - P[0][i];
+    g->e2[i] = P[2][i] - P[0][i];
   }
-  if (m->smooth)
-    for (int e = 0; e < 3; e++)
-      if (m->curved[f] & (1 << e)) {
-        const int    a = e, b = (e + 1) % 3;
-        const double d[3] = {P[b][0] - P[a][0], P[b][1] - P[a][1], P[b][2] - P[a][2]};
-        NagataCoefficient(d, &m->N[3 * m->C[3 * f + a]], &m->N[3 * m->C[3 * f + b]], c[e]);
-      }
+  for (int e = 0; e < 3; e++) {
+    for (int i = 0; i < 3; i++) g->c[e][i] = 0.0;
+    if (m->smooth && (m->curved[f] & (1 << e))) {
+      const int    a = e, b = (e + 1) % 3;
+      const double d[3] = {P[b][0] - P[a][0], P[b][1] - P[a][1], P[b][2] - P[a][2]};
+      NagataCoefficient(d, &m->N[3 * m->C[3 * f + a]], &m->N[3 * m->C[3 * f + b]], g->c[e]);
+    }
+  }
+}
+
+static inline void FacetGeomEval(const FacetGeom *g, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv)
+{
+  const double w = 1.0 - u - v;
   for (int i = 0; i < 3; i++) {
-    x[i]  = P[0][i] + u * e1[i] + v * e2[i] - c[0][i] * u * w - c[1][i] * u * v - c[2][i] * v * w;
-    xu[i] = e1[i] - c[0][i] * (w - u) - c[1][i] * v + c[2][i] * v;
-    xv[i] = e2[i] + c[0][i] * u - c[1][i] * u - c[2][i] * (w - v);
-    if (xuu) xuu[i] = 2.0 * c[0][i];
-    if (xuv) xuv[i] = c[0][i] - c[1][i] + c[2][i];
-    if (xvv) xvv[i] = 2.0 * c[2][i];
+    x[i]  = g->P0[i] + u * g->e1[i] + v * g->e2[i] - g->c[0][i] * u * w - g->c[1][i] * u * v - g->c[2][i] * v * w;
+    xu[i] = g->e1[i] - g->c[0][i] * (w - u) - g->c[1][i] * v + g->c[2][i] * v;
+    xv[i] = g->e2[i] + g->c[0][i] * u - g->c[1][i] * u - g->c[2][i] * (w - v);
+    if (xuu) xuu[i] = 2.0 * g->c[0][i];
+    if (xuv) xuv[i] = g->c[0][i] - g->c[1][i] + g->c[2][i];
+    if (xvv) xvv[i] = 2.0 * g->c[2][i];
   }
+}
+
+static void FacetEvalLocal(const FacetsData *m, int f, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv)
+{
+  FacetGeom g;
+  FacetGeomSet(m, f, &g);
+  FacetGeomEval(&g, u, v, x, xu, xv, xuu, xuv, xvv);
 }
 
 static void FacetsEval(const Patch *p, double xi, double eta, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv)
@@ -202,48 +220,64 @@ static inline double BoxDist2(const FacetsNode *n, const double y[3])
 
 /* the closest facet (smallest squared distance, then the smallest index) among those closer than
    b on entry; b unchanged if none */
-static void TreeClosest(const FacetsData *m, const double y[3], Best *b)
+/* the closest facet (smallest squared distance, then the smallest index) among those closer than
+   b on entry; b unchanged if none. With list (smoothed surfaces): also every facet within
+   sqrt(b) + 2 dev of y (a superset: filtered by FacetsFinish), at most 256 */
+static void TreeClosestCollect(const FacetsData *m, const double y[3], Best *b, Best *list, int *nl)
 {
-  int stack[128], ns = 0;
+  int    stack[128], ns = 0;
+  double R2 = b->d2;
   if (!m->nnode) return;
+  if (list) {
+    *nl = 0;
+    R2  = b->d2 < HUGE_VAL ? (sqrt(b->d2) + 2.0 * m->dev) * (sqrt(b->d2) + 2.0 * m->dev) * (1.0 + 1e-12) : HUGE_VAL;
+  }
   stack[ns++] = 0;
   while (ns) {
     const FacetsNode *n = &m->node[stack[--ns]];
-    if (BoxDist2(n, y) > b->d2) continue;
+    if (BoxDist2(n, y) > R2) continue;
     if (n->count > 0) {
       for (int k = n->first; k < n->first + n->count; k++) {
-        double    u, v;
-        int       reg;
+        double       u, v;
+        int          reg;
         const double d2 = TriClosest(m, k, y, &u, &v, &reg);
         if (Better(d2, k, b)) {
           b->d2 = d2;
           b->f  = k;
+          if (list) R2 = (sqrt(d2) + 2.0 * m->dev) * (sqrt(d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+          else R2 = d2;
+        }
+        if (list && d2 <= R2 && *nl < 256) {
+          list[*nl].d2 = d2;
+          list[(*nl)++].f = k;
         }
       }
     } else {
       const int    l = n->first, r = n->first + 1;
       const double dl = BoxDist2(&m->node[l], y), dr = BoxDist2(&m->node[r], y);
       if (dl <= dr) { /* the nearer child is popped first */
-        if (dr <= b->d2 && ns < 128) stack[ns++] = r;
-        if (dl <= b->d2 && ns < 128) stack[ns++] = l;
+        if (dr <= R2 && ns < 128) stack[ns++] = r;
+        if (dl <= R2 && ns < 128) stack[ns++] = l;
       } else {
-        if (dl <= b->d2 && ns < 128) stack[ns++] = l;
-        if (dr <= b->d2 && ns < 128) stack[ns++] = r;
+        if (dl <= R2 && ns < 128) stack[ns++] = l;
+        if (dr <= R2 && ns < 128) stack[ns++] = r;
       }
     }
   }
 }
 
+static void TreeClosest(const FacetsData *m, const double y[3], Best *b) { TreeClosestCollect(m, y, b, NULL, NULL); }
+
 /* ------------------------------------------------------------------ projection */
 
 /* Newton on |x(u, v) - y|^2 / 2 over facet f's (extended) patch from (u, v); returns 0 when it
    converged (inside the facet or not) */
-static int PatchNewton(const FacetsData *m, int f, const double y[3], double *uo, double *vo)
+static int PatchNewton(const FacetGeom *gm, const double y[3], double *uo, double *vo)
 {
   double u = *uo, v = *vo, last = HUGE_VAL;
   for (int it = 0; it < 40; it++) {
     double x[3], xu[3], xv[3], xuu[3], xuv[3], xvv[3], r[3], g[2], H[3], det, d[2];
-    FacetEvalLocal(m, f, u, v, x, xu, xv, xuu, xuv, xvv);
+    FacetGeomEval(gm, u, v, x, xu, xv, xuu, xuv, xvv);
     for (int i = 0; i < 3; i++) r[i] = x[i] - y[i];
     g[0] = Dot(r, xu);
     g[1] = Dot(r, xv);
@@ -281,7 +315,7 @@ static int PatchNewton(const FacetsData *m, int f, const double y[3], double *uo
 }
 
 /* closest point on edge e of facet f's patch (1D Newton on the edge parameter, clamped) */
-static void EdgeClosest(const FacetsData *m, int f, int e, const double y[3], double *uo, double *vo)
+static void EdgeClosest(const FacetGeom *gm, int e, const double y[3], double *uo, double *vo)
 {
   double t = e == 0 ? *uo : (e == 1 ? *vo : 1.0 - *vo);
   t        = Clamp01(t);
@@ -290,7 +324,7 @@ static void EdgeClosest(const FacetsData *m, int f, int e, const double y[3], do
     if (e == 0) u = t, v = 0.0;
     else if (e == 1) u = 1.0 - t, v = t;
     else u = 0.0, v = 1.0 - t;
-    FacetEvalLocal(m, f, u, v, x, xu, xv, xuu, xuv, xvv);
+    FacetGeomEval(gm, u, v, x, xu, xv, xuu, xuv, xvv);
     for (int i = 0; i < 3; i++) {
       r[i] = x[i] - y[i];
       if (e == 0) xt[i] = xu[i], xtt[i] = xuu[i];
@@ -308,48 +342,19 @@ static void EdgeClosest(const FacetsData *m, int f, int e, const double y[3], do
   else *uo = 0.0, *vo = 1.0 - t;
 }
 
-/* every facet whose plane triangle is closer than r2 (squared), up to max, in list with its squared
-   distance, in increasing order (then facet index); returns the count */
-static int TreeCollect(const FacetsData *m, const double y[3], double r2, Best *list, int max)
-{
-  int stack[128], ns = 0, n = 0;
-  stack[ns++] = 0;
-  while (ns) {
-    const FacetsNode *nd = &m->node[stack[--ns]];
-    if (BoxDist2(nd, y) > r2) continue;
-    if (nd->count > 0) {
-      for (int k = nd->first; k < nd->first + nd->count; k++) {
-        double       u, v;
-        int          reg;
-        const double d2 = TriClosest(m, k, y, &u, &v, &reg);
-        if (d2 > r2 || n >= max) continue;
-        int j = n++;
-        while (j > 0 && Better(d2, k, &list[j - 1])) {
-          list[j] = list[j - 1];
-          j--;
-        }
-        list[j].d2 = d2;
-        list[j].f  = k;
-      }
-    } else if (ns < 127) {
-      stack[ns++] = nd->first;
-      stack[ns++] = nd->first + 1;
-    }
-  }
-  return n;
-}
-
 /* closest point of y on facet f's patch (its triangle): Newton inside, else the best of its three
    edges; *edge = -1 inside, else the edge (0: P0P1, 1: P1P2, 2: P2P0) */
 static double PatchClosestLocal(const FacetsData *m, int f, const double y[3], double *uo, double *vo, int *edge)
 {
-  double u, v, x[3], xu[3], xv[3], best = HUGE_VAL;
-  int    reg;
+  double    u, v, x[3], xu[3], xv[3], best = HUGE_VAL;
+  int       reg;
+  FacetGeom gm;
   TriClosest(m, f, y, &u, &v, &reg);
+  FacetGeomSet(m, f, &gm);
   {
     double uc = u, vc = v;
-    if (!PatchNewton(m, f, y, &uc, &vc) && uc >= 0.0 && vc >= 0.0 && uc + vc <= 1.0) {
-      FacetEvalLocal(m, f, uc, vc, x, xu, xv, NULL, NULL, NULL);
+    if (!PatchNewton(&gm, y, &uc, &vc) && uc >= 0.0 && vc >= 0.0 && uc + vc <= 1.0) {
+      FacetGeomEval(&gm, uc, vc, x, xu, xv, NULL, NULL, NULL);
       *uo   = uc;
       *vo   = vc;
       *edge = -1;
@@ -358,8 +363,8 @@ static double PatchClosestLocal(const FacetsData *m, int f, const double y[3], d
   }
   for (int e = 0; e < 3; e++) {
     double ue = u, ve = v;
-    EdgeClosest(m, f, e, y, &ue, &ve);
-    FacetEvalLocal(m, f, ue, ve, x, xu, xv, NULL, NULL, NULL);
+    EdgeClosest(&gm, e, y, &ue, &ve);
+    FacetGeomEval(&gm, ue, ve, x, xu, xv, NULL, NULL, NULL);
     const double d2 = Dist2(x, y);
     if (d2 < best) {
       best  = d2;
@@ -376,16 +381,25 @@ static double PatchClosestLocal(const FacetsData *m, int f, const double y[3], d
    distance of a patch from its triangle) is a candidate; on each, the closest point of its patch;
    the smallest distance wins (ties: the smallest facet index). A point beside an open edge (its
    tangential offset above 1e-9 of the facet's size) is no contact (1). */
-static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], double L, const Best *b, PatchCandidate *c)
+static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], double L, const Best *b, Best *list, const int *nl, PatchCandidate *c)
 {
   double u, v, x[3], xu[3], xv[3], P0[3], P1[3], P2[3];
   int    reg, f = b->f;
   TriClosest(m, f, y, &u, &v, &reg);
   if (m->smooth) {
-    Best         list[256], bb = {HUGE_VAL, INT_MAX};
-    int          edge = -1;
-    const double r  = sqrt(b->d2) + 2.0 * m->dev;
-    const int    nc = TreeCollect(m, y, r * r * (1.0 + 1e-12), list, 256);
+    Best         bb = {HUGE_VAL, INT_MAX}, tmp;
+    int          edge = -1, nc = 0;
+    const double r  = sqrt(b->d2) + 2.0 * m->dev, r2 = r * r * (1.0 + 1e-12);
+    for (int k = 0; k < *nl; k++) /* the candidates within sqrt(b) + 2 dev, by distance, then index */
+      if (list[k].d2 <= r2) {
+        int j = nc++;
+        tmp   = list[k];
+        while (j > 0 && Better(tmp.d2, tmp.f, &list[j - 1])) {
+          list[j] = list[j - 1];
+          j--;
+        }
+        list[j] = tmp;
+      }
     for (int k = 0; k < nc; k++) {
       double uk = 0.0, vk = 0.0;
       int    ek = -1;
@@ -443,10 +457,11 @@ static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], 
 static int FacetsClosest(const Patch *p, const double y[3], double maxdist, double L, PatchCandidate *c)
 {
   const FacetsData *m = (const FacetsData *)p->data;
-  Best              b = {maxdist < HUGE_VAL ? maxdist * maxdist : HUGE_VAL, INT_MAX};
-  TreeClosest(m, y, &b);
+  Best              b = {maxdist < HUGE_VAL ? maxdist * maxdist : HUGE_VAL, INT_MAX}, list[256];
+  int               nl = 0;
+  TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
   if (b.f == INT_MAX) return 1;
-  return FacetsFinish(p, m, y, L, &b, c);
+  return FacetsFinish(p, m, y, L, &b, list, &nl, c);
 }
 
 /* The same result as FacetsClosest; the hint's facet and a greedy walk over its neighbours give
@@ -475,9 +490,13 @@ static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, 
     b.d2 = maxdist * maxdist;
     b.f  = INT_MAX;
   }
-  TreeClosest(m, y, &b);
-  if (b.f == INT_MAX) return 1;
-  return FacetsFinish(p, m, y, L, &b, c);
+  {
+    Best list[256];
+    int  nl = 0;
+    TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
+    if (b.f == INT_MAX) return 1;
+    return FacetsFinish(p, m, y, L, &b, list, &nl, c);
+  }
 }
 
 /* dn/dy: raw facets 0 (the facet's normal). Smoothed, at a projection inside the facet: from the
