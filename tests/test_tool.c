@@ -10,6 +10,7 @@
 
 #include "testutil.h"
 #include "tool.h"
+#include "../src/tool/facets.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -1127,7 +1128,7 @@ static PetscErrorCode test_registry(void)
   ierr = ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T);
   PetscCall(PetscPopErrorHandler());
   PetscCall(ToolsDestroy(n, &T));
-  TU_CHECK(ierr != 0 && !strcmp(errmsg, "-tool_t_patch0_type slab: unknown patch type (use plane, sphere, cylinder, torus or coons)"), "registry: an unknown patch type is refused with one line naming the option: \"%s\"", errmsg);
+  TU_CHECK(ierr != 0 && !strcmp(errmsg, "-tool_t_patch0_type slab: unknown patch type (use plane, sphere, cylinder, torus, coons or facets)"), "registry: an unknown patch type is refused with one line naming the option: \"%s\"", errmsg);
   memset(&p, 0, sizeof(p));
   PetscCall(PetscPushErrorHandler(Capture, NULL));
   ierr = PatchSetType(&p, "slab");
@@ -1274,6 +1275,251 @@ static PetscErrorCode test_doc_examples(void)
 
 /* ------------------------------------------------------------------ timing (not a test) */
 
+/* ------------------------------------------------------------------ meshed surfaces (facets) */
+
+/* the tools of an options string (NULL and the error text on failure) */
+static Tool *facets_tools(const char *opts, PetscInt *n, PetscErrorCode *ierr)
+{
+  Tool *T = NULL;
+  *n      = 0;
+  PetscOptionsClear(NULL);
+  PetscOptionsInsertString(NULL, opts);
+  errmsg[0] = 0;
+  PetscPushErrorHandler(Capture, NULL);
+  *ierr = ToolsCreateFromOptions(PETSC_COMM_WORLD, n, &T);
+  PetscPopErrorHandler();
+  if (*ierr) {
+    ToolsDestroy(*n, &T);
+    return NULL;
+  }
+  return T;
+}
+
+static int facets_count(const Tool *t) { return t && t->npatch == 1 && istype(&t->patch[0], "facets") ? ((const FacetsData *)t->patch[0].data)->nf : -1; }
+
+static void test_facets_readers(void)
+{
+  PetscInt       n;
+  PetscErrorCode ierr;
+  Tool          *T;
+  Projection     pr;
+  const double   sh[3] = {0, 0, 0};
+  struct {
+    const char *opts, *what;
+    int         nf, nopen;
+    double      y[3], gap, nz;
+  } cases[] = {
+    {"-tool_names a -tool_a_file tests/data/tool_tet.stl -tool_a_smooth 0", "ASCII STL, closed tetrahedron", 4, 0, {1, 1, 1}, 2.0 / sqrt(3.0), 1.0 / sqrt(3.0)},
+    {"-tool_names a -tool_a_file tests/data/tool_square_bin.stl", "binary STL, square", 2, 4, {0.3, 0.6, 0.5}, 0.5, 1.0},
+    {"-tool_names a -tool_a_file tests/data/tool_quads.msh -tool_a_file_group top", "Gmsh 4.1, group 'top' (2 quadrangles)", 4, 6, {1.5, 0.5, 1.25}, 0.25, 1.0},
+    {"-tool_names a -tool_a_file tests/data/tool_quads.msh -tool_a_file_group side", "Gmsh 4.1, group 'side' (1 triangle)", 1, 3, {0.5, 0.3, 0.5}, -0.3, 0.0},
+    {"-tool_names a -tool_a_file tests/data/tool_quads.msh", "Gmsh 4.1, every surface element", 5, -1, {1.5, 0.5, 1.25}, 0.25, 1.0},
+    {"-tool_names a -tool_a_file tests/data/tool_quads22.msh -tool_a_file_group top", "Gmsh 2.2, group 'top'", 4, 6, {1.5, 0.5, 0.75}, -0.25, 1.0},
+    {"-tool_names a -tool_a_file tests/data/tool_quads22.msh -tool_a_file_group top -tool_a_flip", "Gmsh 2.2 flipped", 4, 6, {1.5, 0.5, 0.75}, 0.25, -1.0},
+    {"-tool_names a -tool_a_file tests/data/tool_surface.inp", "Abaqus *SURFACE on a C3D8 face (S2, out of the solid)", 2, 4, {0.5, 0.5, 1.5}, 0.5, 1.0},
+    {"-tool_names a -tool_a_file tests/data/tool_surface.inp -tool_a_file_group RIGID", "Abaqus R3D4 element set", 4, 6, {1.5, 0.5, 3.5}, 0.5, 1.0},
+    {"-tool_names a -tool_a_file tests/data/tool_surface.inp -tool_a_file_group TOP -tool_a_file_format inp", "Abaqus named surface, format given", 2, 4, {0.2, 0.7, 0.9}, -0.1, 1.0},
+  };
+  for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
+    T            = facets_tools(cases[k].opts, &n, &ierr);
+    const int nf = facets_count(T), r = T ? ToolProject(&T[0], sh, cases[k].y, PETSC_INFINITY, &pr) : 1;
+    const int no = T ? ((const FacetsData *)T[0].patch[0].data)->nopen : -2;
+    TU_CHECK(T && nf == cases[k].nf && (cases[k].nopen < 0 || no == cases[k].nopen) && r == 0 && fabs(pr.gap - cases[k].gap) < 1e-12 && fabs(pr.n[2] - cases[k].nz) < 1e-12, "facets reader: %s: %d triangles (%d expected), %d open edges, gap %.15g (%.15g), n_z %g %s", cases[k].what, nf, cases[k].nf, no, r ? 0 : pr.gap, cases[k].gap, r ? 0 : pr.n[2], errmsg);
+    if (T) ToolsDestroy(n, &T);
+  }
+  /* the open edge: a point beside the square is not in contact, one above its edge is */
+  T = facets_tools("-tool_names a -tool_a_file tests/data/tool_square_bin.stl", &n, &ierr);
+  if (T) {
+    const double yo[3] = {1.5, 0.5, 0.1}, ye[3] = {1.0, 0.5, 0.2}, yc[3] = {1.0, 1.0, -0.3};
+    Projection   pe, pc;
+    const int    ro = ToolProject(&T[0], sh, yo, PETSC_INFINITY, &pr), re = ToolProject(&T[0], sh, ye, PETSC_INFINITY, &pe), rc = ToolProject(&T[0], sh, yc, PETSC_INFINITY, &pc);
+    TU_CHECK(ro == 1 && re == 0 && fabs(pe.gap - 0.2) < 1e-14 && rc == 0 && fabs(pc.gap + 0.3) < 1e-14, "facets: beside an open edge no contact (returns %d), above the edge (%d, gap %g) and below a corner (%d, gap %g) in contact", ro, re, pe.gap, rc, pc.gap);
+    ToolsDestroy(n, &T);
+  } else TU_CHECK(0, "facets: square: %s", errmsg);
+  /* a tool file of patches gives the same tool as the options */
+  {
+    PetscInt n2;
+    Tool    *A = facets_tools("-tool_names a -tool_a_file tests/data/tool_patches.tool", &n, &ierr);
+    Tool    *B = facets_tools("-tool_names a -tool_a_patches 2 -tool_a_patch0_type plane -tool_a_patch0_origin 0,0,0 -tool_a_patch0_e1 1,0,0 -tool_a_patch0_e2 0,1,0 -tool_a_patch0_range 0,1,0,1 -tool_a_patch1_type sphere -tool_a_patch1_center 0,0,-1 -tool_a_patch1_radius 1 -tool_a_patch1_axis 0,0,1 -tool_a_patch1_ref 1,0,0 -tool_a_patch1_range 0,90,0,90", &n2, &ierr);
+    int      same = A && B && A[0].npatch == 2 && B[0].npatch == 2;
+    for (int k = 0; same && k < 200; k++) {
+      const double y[3] = {uni(-0.2, 1.2), uni(-0.2, 1.2), uni(-0.5, 0.5)};
+      Projection   pa, pb;
+      const int    ra = ToolProject(&A[0], sh, y, PETSC_INFINITY, &pa), rb = ToolProject(&B[0], sh, y, PETSC_INFINITY, &pb);
+      same            = ra == rb && (ra || (pa.patch == pb.patch && pa.gap == pb.gap && pa.xi == pb.xi && pa.eta == pb.eta));
+    }
+    TU_CHECK(same, "tool file (.tool): the same patches as the options, bit for bit on 200 points %s", errmsg);
+    if (A) ToolsDestroy(n, &A);
+    if (B) ToolsDestroy(n2, &B);
+  }
+}
+
+static void test_facets_errors(void)
+{
+  PetscInt n;
+  PetscErrorCode ierr;
+  const struct {
+    const char *opts, *expect;
+  } bad[] = {
+    {"-tool_names a -tool_a_file tests/data/no_such.stl", "cannot open tool file 'tests/data/no_such.stl'"},
+    {"-tool_names a -tool_a_file tests/data/bad_tool_garbage.stl", "tool file tests/data/bad_tool_garbage.stl: not an STL file"},
+    {"-tool_names a -tool_a_file tests/data/bad_tool_empty.stl", "tool file tests/data/bad_tool_empty.stl: empty surface"},
+    {"-tool_names a -tool_a_file tests/data/bad_tool_orient.stl", "tool file tests/data/bad_tool_orient.stl: the surface is not consistently oriented: facet 2 and facet 1"},
+    {"-tool_names a -tool_a_file tests/data/bad_tool_nonmanifold.stl", "tool file tests/data/bad_tool_nonmanifold.stl: non-manifold edge shared by 3 facets"},
+    {"-tool_names a -tool_a_file tests/data/bad_tool_nan.stl", "tool file tests/data/bad_tool_nan.stl: vertex"},
+    {"-tool_names a -tool_a_file tests/data/bad_tool_type.msh", "tool file tests/data/bad_tool_type.msh: element 2: unknown element type 9"},
+    {"-tool_names a -tool_a_file tests/data/bad_tool_type.inp", "tool file tests/data/bad_tool_type.inp: line 19: unknown element type S8R"},
+    {"-tool_names a -tool_a_file tests/data/tool_quads.msh -tool_a_file_group nowhere", "no physical surface named 'nowhere'"},
+    {"-tool_names a -tool_a_file tests/data/tool_quads.txt", "-tool_a_file tests/data/tool_quads.txt: unknown format 'txt'"},
+    {"-tool_names a -tool_a_file tests/data/bad_tool_key.tool", "tool file tests/data/bad_tool_key.tool: key 'patch1_colour' is not an option of its patches"},
+    {"-tool_names a -tool_a_file tests/data/tool_tet.stl -tool_a_patches 1", "-tool_a_file and -tool_a_patches are exclusive"},
+  };
+  for (size_t k = 0; k < sizeof(bad) / sizeof(bad[0]); k++) {
+    Tool *T = facets_tools(bad[k].opts, &n, &ierr);
+    TU_CHECK(!T && ierr && strstr(errmsg, bad[k].expect) && !strchr(errmsg, '\n'), "facets error, one line: \"%s\"", errmsg);
+  }
+  /* without smoothing a non-manifold edge is accepted */
+  Tool *T = facets_tools("-tool_names a -tool_a_file tests/data/bad_tool_nonmanifold.stl -tool_a_smooth 0", &n, &ierr);
+  TU_CHECK(T && facets_count(T) == 3, "facets: a non-manifold surface is accepted with -smooth 0 %s", errmsg);
+  if (T) ToolsDestroy(n, &T);
+}
+
+/* a sphere of radius R about c triangulated from an octahedron, each face split into k^2 */
+static void write_sphere_stl(const char *path, double R, int k)
+{
+  FILE        *fp = fopen(path, "w");
+  const double O[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const int    Fc[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  fprintf(fp, "solid s\n");
+  for (int f = 0; f < 8; f++)
+    for (int i = 0; i < k; i++)
+      for (int j = 0; j < k - i; j++)
+        for (int up = 0; up < 2; up++) {
+          if (up && j == k - i - 1) continue;
+          const int b[3][2] = {{i, j}, {i + 1, j}, {i, j + 1}}, t[3][2] = {{i + 1, j}, {i + 1, j + 1}, {i, j + 1}};
+          fprintf(fp, "facet normal 0 0 0\n outer loop\n");
+          for (int c = 0; c < 3; c++) {
+            const int *ij = up ? t[c] : b[c];
+            double     p[3], l;
+            for (int d = 0; d < 3; d++) p[d] = O[Fc[f][0]][d] + (O[Fc[f][1]][d] - O[Fc[f][0]][d]) * ij[0] / k + (O[Fc[f][2]][d] - O[Fc[f][0]][d]) * ij[1] / k;
+            l = nrm(p);
+            fprintf(fp, "  vertex %.17g %.17g %.17g\n", R * p[0] / l, R * p[1] / l, R * p[2] / l);
+          }
+          fprintf(fp, " endloop\nendfacet\n");
+        }
+  fprintf(fp, "endsolid s\n");
+  fclose(fp);
+}
+
+static void test_facets_sphere(void)
+{
+  PetscInt       n;
+  PetscErrorCode ierr;
+  const double   sh[3] = {0.1, -0.2, 0.3};
+  char           opts[512], path[256];
+  snprintf(path, sizeof(path), "%s/facets_sphere_%d.stl", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid());
+  write_sphere_stl(path, 1.0, 16);
+  for (int smooth = 0; smooth < 2; smooth++) {
+    snprintf(opts, sizeof(opts), "-tool_names s -tool_s_file %s -tool_s_file_format stl -tool_s_smooth %d", path, smooth);
+    Tool *T = facets_tools(opts, &n, &ierr);
+    if (!T) {
+      TU_CHECK(0, "facets sphere: %s", errmsg);
+      continue;
+    }
+    const Patch *p = &T[0].patch[0];
+    int          same = 1, hint_same = 1, nfd = 0;
+    double       egap = 0, en = 0, edn = 0, chord = HUGE_VAL;
+    for (int k = 0; k < 2000; k++) {
+      double       y[3], d2t, d2b, yr[3];
+      const double th = uni(0, PI), ph = uni(0, 2 * PI), r = uni(0.7, 1.3);
+      y[0] = r * sin(th) * cos(ph) + sh[0];
+      y[1] = r * sin(th) * sin(ph) + sh[1];
+      y[2] = r * cos(th) + sh[2];
+      for (int i = 0; i < 3; i++) yr[i] = y[i] - sh[i];
+      const int ft = FacetsTreeClosest(p, yr, &d2t), fb = FacetsBruteClosest(p, yr, &d2b);
+      if (ft != fb || d2t != d2b) same = 0;
+      Projection pr, ph_, hint;
+      if (ToolProject(&T[0], sh, y, PETSC_INFINITY, &pr)) {
+        same = 0;
+        continue;
+      }
+      /* a hint from a random facet gives the same projection, bit for bit */
+      hint       = pr;
+      hint.patch = 0;
+      {
+        const int fr = (int)(urand() * ((const FacetsData *)p->data)->nf);
+        hint.xi      = 4.0 * (fr >> 10) + 0.3;
+        hint.eta     = 4.0 * (fr & 1023) + 0.3;
+      }
+      if (ToolProjectHint(&T[0], sh, y, PETSC_INFINITY, &hint, &ph_) || ph_.xi != pr.xi || ph_.eta != pr.eta || ph_.gap != pr.gap) hint_same = 0;
+      egap = fmax(egap, fabs(pr.gap - (r - 1.0)));
+      {
+        const double na[3] = {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)};
+        en                 = fmax(en, dist(na, pr.n));
+      }
+      /* the frame chord of the contact object: (xi + 0.01, eta) on the same facet */
+      {
+        double x0[3], x1[3], xu[3], xv[3], u0, v0, u1, v1;
+        PatchEval(p, pr.xi, pr.eta, x0, xu, xv, NULL, NULL, NULL);
+        PatchEval(p, pr.xi + 0.01, pr.eta, x1, xu, xv, NULL, NULL, NULL);
+        if (FacetsOfParameters(p, pr.xi, pr.eta, &u0, &v0) != FacetsOfParameters(p, pr.xi + 0.01, pr.eta, &u1, &v1)) chord = 0;
+        chord = fmin(chord, dist(x0, x1));
+      }
+      if (smooth && k < 300) { /* dn/dy against central differences of the projected normal */
+        double dn[9];
+        if (PatchNormalDerivative(p, sh, y, &pr, dn)) {
+          nfd++;
+          continue;
+        }
+        for (int j = 0; j < 3; j++) {
+          const double h  = 1e-6;
+          double       yp[3] = {y[0], y[1], y[2]}, ym[3] = {y[0], y[1], y[2]};
+          Projection   pp, pm;
+          yp[j] += h;
+          ym[j] -= h;
+          ToolProject(&T[0], sh, yp, PETSC_INFINITY, &pp);
+          ToolProject(&T[0], sh, ym, PETSC_INFINITY, &pm);
+          for (int i = 0; i < 3; i++) edn = fmax(edn, fabs((pp.n[i] - pm.n[i]) / (2 * h) - dn[3 * i + j]));
+        }
+      }
+    }
+    const FacetsData *m = (const FacetsData *)p->data;
+    TU_CHECK(same, "facets sphere (%d triangles, %s): the hierarchy gives the brute-force closest facet (same index, same distance) on 2000 points", m->nf, smooth ? "smoothed" : "raw");
+    TU_CHECK(hint_same, "facets sphere (%s): ToolProjectHint from a random facet gives ToolProject's result bit for bit", smooth ? "smoothed" : "raw");
+    TU_CHECK(smooth ? (egap < 2e-3 && en < 1e-2) : (egap < 2.5e-2 && en < 0.15), "facets sphere (%s): gap within %.2e of the sphere's, normal within %.2e", smooth ? "smoothed" : "raw", egap, en);
+    TU_CHECK(chord > 1e-4, "facets sphere (%s): the frame chord (xi + 0.01, eta) stays on the facet, length >= %.2e", smooth ? "smoothed" : "raw", chord);
+    if (smooth) TU_CHECK(edn < 1e-6 && nfd < 30, "facets sphere dn/dy against central differences of the projected normal: max error %.2e (%d edge-held points differenced by the caller)", edn, nfd);
+    if (smooth) { /* the normal across facet edges: the same at vertices, a small jump along edges */
+      const double mid[3][2] = {{0.5, 0}, {0.5, 0.5}, {0, 0.5}}, cor[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+      double       jmid = 0, jv = 0;
+      for (int f = 0; f < m->nf; f++)
+        for (int e = 0; e < 3; e++) {
+          const int g = m->adj[3 * f + e], a = m->F[3 * f + e], b = m->F[3 * f + (e + 1) % 3];
+          int       eg = -1, ca = -1;
+          for (int q = 0; q < 3; q++) {
+            if (m->F[3 * g + q] == b && m->F[3 * g + (q + 1) % 3] == a) eg = q;
+            if (m->F[3 * g + q] == a) ca = q;
+          }
+          double n1[3], n2[3], xi, eta;
+          FacetsEncodeForTest(f, mid[e][0], mid[e][1], &xi, &eta);
+          PatchNormal(p, xi, eta, n1);
+          FacetsEncodeForTest(g, mid[eg][0], mid[eg][1], &xi, &eta);
+          PatchNormal(p, xi, eta, n2);
+          jmid = fmax(jmid, dist(n1, n2));
+          FacetsEncodeForTest(f, cor[e][0], cor[e][1], &xi, &eta);
+          PatchNormal(p, xi, eta, n1);
+          FacetsEncodeForTest(g, cor[ca][0], cor[ca][1], &xi, &eta);
+          PatchNormal(p, xi, eta, n2);
+          jv = fmax(jv, dist(n1, n2));
+        }
+      TU_CHECK(jv < 1e-12 && jmid < 2e-2, "facets sphere smoothed: the normal is continuous at vertices (jump %.1e) and jumps by at most %.2e rad across edges (midpoints)", jv, jmid);
+      printf("# facets sphere: %.0f bytes per facet\n", (double)FacetsBytes(m) / m->nf);
+    }
+    ToolsDestroy(n, &T);
+  }
+  remove(path);
+}
+
 static double project_ns(const Patch *p, double thick)
 {
   enum { NP = 4000 };
@@ -1392,6 +1638,12 @@ int main(int argc, char **argv)
 
   /* 9. the examples of doc/tools.md */
   PetscCall(test_doc_examples());
+
+  /* 10. meshed surfaces */
+  test_facets_readers();
+  test_facets_errors();
+  test_facets_sphere();
+  PetscCall(PetscOptionsClear(NULL));
 
   /* timing */
   {

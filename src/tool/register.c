@@ -29,5 +29,6 @@ PetscErrorCode PatchRegisterAll(void)
   PATCH_TYPE("cylinder", PatchCreate_Cylinder); /* cylinder.c */
   PATCH_TYPE("torus", PatchCreate_Torus);       /* torus.c    */
   PATCH_TYPE("coons", PatchCreate_Coons);       /* coons.c    */
+  PATCH_TYPE("facets", PatchCreate_Facets);     /* facets.c   */
   PetscFunctionReturn(0);
 }

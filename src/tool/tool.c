@@ -8,9 +8,10 @@
    its static PatchOps table and PetscErrorCode PatchCreate_<Type>(Patch *), plus one registration
    line PATCH_TYPE("<type>", PatchCreate_<Type>) in PatchRegisterAll() (register.c). Nothing in
    this file switches on the type. */
-#include "toolimpl.h"
+#include "facets.h"
 
 #include <float.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -239,7 +240,25 @@ static int PatchClosest(const Patch *p, const double y[3], double maxdist, Patch
   return 0;
 }
 
-int ToolProject(const Tool *t, const double shift[3], const double y[3], double maxdist, Projection *pr)
+/* Closest point of y on one patch, with the parameters of an earlier projection on it as a hint
+   (the types with a closesthint operation) */
+static int PatchClosestHint(const Patch *p, const double y[3], double maxdist, const Projection *hint, PatchCandidate *c)
+{
+  if (p->ops->closesthint) return p->ops->closesthint(p, y, maxdist, PatchScale(p), hint->xi, hint->eta, c);
+  return PatchClosest(p, y, maxdist, c);
+}
+
+static int ToolProjectImpl(const Tool *t, const double shift[3], const double y[3], double maxdist, const Projection *hint, Projection *pr);
+
+int ToolProject(const Tool *t, const double shift[3], const double y[3], double maxdist, Projection *pr) { return ToolProjectImpl(t, shift, y, maxdist, NULL, pr); }
+
+int ToolProjectHint(const Tool *t, const double shift[3], const double y[3], double maxdist, const Projection *hint, Projection *pr)
+{
+  if (hint && (hint->patch < 0 || hint->patch >= t->npatch)) hint = NULL;
+  return ToolProjectImpl(t, shift, y, maxdist, hint, pr);
+}
+
+static int ToolProjectImpl(const Tool *t, const double shift[3], const double y[3], double maxdist, const Projection *hint, Projection *pr)
 {
   double         yr[3], bd = 0.0, tol = 0.0;
   PatchCandidate bi = {0.0, 0.0, {0.0, 0.0, 0.0}, HUGE_VAL, 0}, ba = bi, c, best;
@@ -272,7 +291,7 @@ int ToolProject(const Tool *t, const double shift[3], const double y[3], double 
   for (int kk = 0; kk < t->npatch; kk++) {
     const int k = kk < np ? order[kk] : kk;
     if (kk < np && (bdist[k] > maxdist || (ki >= 0 && bdist[k] > sqrt(bi.d2)))) continue;
-    if (PatchClosest(&t->patch[k], yr, maxdist, &c) || !(c.d2 >= 0.0)) continue; /* skipped, or not a number */
+    if ((hint && hint->patch == k ? PatchClosestHint(&t->patch[k], yr, maxdist, hint, &c) : PatchClosest(&t->patch[k], yr, maxdist, &c)) || !(c.d2 >= 0.0)) continue; /* skipped, or not a number */
     if (c.interior && c.d2 < bi.d2) {
       bi = c;
       ki = k;
@@ -558,13 +577,17 @@ static PetscErrorCode PatchSetFromOptions(PetscOptionItems *PetscOptionsObject, 
 }
 
 /* the options of tool t inside its block (prefix tool_<name>_): motion or path, the patches */
-static PetscErrorCode ToolSetFromOptions(PetscOptionItems *PetscOptionsObject, Tool *t)
+static PetscErrorCode ToolPatchesFromOptions(PetscOptionItems *PetscOptionsObject, Tool *t);
+
+/* the options of tool t inside its block; *tfile = +-1 (flip) when its patches come from a tool
+   file `file`, read afterwards */
+static PetscErrorCode ToolSetFromOptions(PetscOptionItems *PetscOptionsObject, Tool *t, char file[], int *tfile)
 {
   const MPI_Comm comm = PetscOptionsObject->comm;
   char           pre[PETSC_MAX_PATH_LEN], full[PETSC_MAX_PATH_LEN];
-  PetscInt       np = 0, cnt = 4 * 32;
+  PetscInt       cnt = 4 * 32;
   PetscReal      mo[3] = {0, 0, 0};
-  PetscBool      flg, pset;
+  PetscBool      flg, pset, fset;
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(pre, sizeof(pre), "-tool_%s", t->name));
@@ -581,6 +604,41 @@ static PetscErrorCode ToolSetFromOptions(PetscOptionItems *PetscOptionsObject, T
     for (int q = 1; q < t->npath; q++) PetscCheck(t->path[4 * q] > t->path[4 * (q - 1)] && t->path[4 * q] <= 1, comm, PETSC_ERR_USER_INPUT, "%s: the loads must increase within [0, 1] (point %d at %g)", full, q, (double)t->path[4 * q]);
     PetscCheck(mo[0] == 0 && mo[1] == 0 && mo[2] == 0, comm, PETSC_ERR_USER_INPUT, "%s and %s_motion are exclusive", full, pre);
   }
+  /* the surface from a file: a meshed surface (one facets patch), or a tool file of patches (read
+     after this block, ToolsCreateFromOptions) */
+  PetscCall(ToolOptionFullName(PetscOptionsObject, "-file", full, sizeof(full)));
+  PetscCall(PetscOptionsString("-file", "The tool's surface from a file: .stl, .msh, .inp (a meshed surface) or .tool (patches)", "doc/tools.md", file, file, PETSC_MAX_PATH_LEN, &fset));
+  if (fset) {
+    char fmt[16] = "", f[16];
+    PetscCall(PetscOptionsString("-file_format", "Format of -file: stl, msh, inp or tool (default: from the extension)", NULL, fmt, fmt, sizeof(fmt), NULL));
+    FacetsFormat(file, fmt, f);
+    PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, "-patches", &flg));
+    PetscCheck(!flg, comm, PETSC_ERR_USER_INPUT, "%s and %s_patches are exclusive", full, pre);
+    if (!strcmp(f, "tool")) {
+      PetscBool flip = PETSC_FALSE;
+      PetscCall(PetscOptionsBool("-flip", "Reverse the normals of the patches of the tool file", NULL, flip, &flip, NULL));
+      *tfile = flip ? -1 : 1;
+      PetscFunctionReturn(0);
+    }
+    PetscCall(PetscCalloc1(1, &t->patch));
+    t->npatch = 1;
+    PetscCall(PatchSetType(&t->patch[0], "facets"));
+    PetscCall(FacetsPatchFromOptions(PetscOptionsObject, &t->patch[0], ""));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(ToolPatchesFromOptions(PetscOptionsObject, t));
+  PetscFunctionReturn(0);
+}
+
+/* the patches of tool t (-patches, -patch<j>_...) inside its block */
+static PetscErrorCode ToolPatchesFromOptions(PetscOptionItems *PetscOptionsObject, Tool *t)
+{
+  const MPI_Comm comm = PetscOptionsObject->comm;
+  char           full[PETSC_MAX_PATH_LEN];
+  PetscInt       np = 0;
+  PetscBool      flg;
+
+  PetscFunctionBeginUser;
   PetscCall(ToolOptionFullName(PetscOptionsObject, "-patches", full, sizeof(full)));
   PetscCall(PetscOptionsInt("-patches", "Number of patches (numbered 0, 1, ...; each configured by -patch<j>_...)", NULL, np, &np, &flg));
   PetscCheck(flg, comm, PETSC_ERR_USER_INPUT, "%s: missing required option (number of patches of tool '%s')", full, t->name);
@@ -616,6 +674,90 @@ static PetscErrorCode ToolSetUp(Tool *t)
       t->bbox[2 * i + 1] = fmax(t->bbox[2 * i + 1], b[2 * i + 1]);
     }
   }
+  PetscFunctionReturn(0);
+}
+
+/* A tool file (.tool): lines "key value" with the keys of the tool's patch options without the
+   prefix -tool_<name>_ (patches 2, patch0_type sphere, patch0_radius 50.8, ...), '#' starts a
+   comment. Read on rank 0, broadcast, and read as options from a private database (the options
+   database is not written), in a block of its own; a key the patches do not use is an error. */
+static PetscErrorCode ToolPatchesFromFile(MPI_Comm comm, Tool *t, const char prefix[], const char title[], const char file[], int sign)
+{
+  PetscMPIInt    rank;
+  char          *buf = NULL, ttl[PETSC_MAX_PATH_LEN], err[PETSC_MAX_PATH_LEN + 64] = "";
+  long           len = 0;
+  PetscOptions   o;
+  PetscErrorCode ierr = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    FILE *fp = fopen(file, "rb");
+    if (!fp) PetscCall(PetscSNPrintf(err, sizeof(err), "cannot open tool file '%s'", file));
+    else {
+      fseek(fp, 0, SEEK_END);
+      len = ftell(fp);
+      fseek(fp, 0, SEEK_SET);
+      buf = malloc(len + 1);
+      if (!buf || fread(buf, 1, len, fp) != (size_t)len) PetscCall(PetscSNPrintf(err, sizeof(err), "cannot read tool file '%s'", file));
+      fclose(fp);
+    }
+  }
+  PetscCallMPI(MPI_Bcast(err, sizeof(err), MPI_CHAR, 0, comm));
+  if (err[0]) {
+    free(buf);
+    SETERRQ(comm, PETSC_ERR_FILE_OPEN, "%s", err);
+  }
+  PetscCallMPI(MPI_Bcast(&len, 1, MPI_LONG, 0, comm));
+  if (rank) buf = malloc(len + 1);
+  PetscCallMPI(MPI_Bcast(buf, (int)len, MPI_CHAR, 0, comm));
+  buf[len] = 0;
+  PetscCall(PetscOptionsCreate(&o));
+  {
+    int   ln = 0;
+    for (char *line = buf, *next; line && !ierr; line = next) {
+      char key[256], val[4096], name[PETSC_MAX_PATH_LEN], *h;
+      next = strchr(line, '\n');
+      if (next) *next++ = 0;
+      h = strchr(line, '#');
+      ln++;
+      if (h) *h = 0;
+      const int n = sscanf(line, "%255s %4095s", key, val);
+      if (n <= 0) continue;
+      if (n == 1) {
+        PetscCall(PetscSNPrintf(err, sizeof(err), "tool file %s: '%s' has no value", file, key));
+        ierr = 1;
+        break;
+      }
+      PetscCall(PetscSNPrintf(name, sizeof(name), "-%s%s", prefix, key[0] == '-' ? key + 1 : key));
+      PetscCall(PetscOptionsSetValue(o, name, val));
+    }
+  }
+  free(buf);
+  if (ierr) {
+    PetscCall(PetscOptionsDestroy(&o));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "%s", err);
+  }
+  PetscCall(PetscSNPrintf(ttl, sizeof(ttl), "%s (file %s)", title, file));
+  PetscCall(PetscOptionsPush(o));
+  PetscOptionsBegin(comm, prefix, ttl, NULL);
+  ierr = ToolPatchesFromOptions(PetscOptionsObject, t);
+  PetscOptionsEnd();
+  PetscCall(PetscOptionsPop());
+  if (!ierr) {
+    PetscInt N = 0;
+    char   **names = NULL, **values = NULL;
+    PetscCall(PetscOptionsLeftGet(o, &N, &names, &values));
+    if (N > 0) {
+      PetscCall(PetscSNPrintf(err, sizeof(err), "tool file %s: key '%s' is not an option of its patches", file, names[0] + strlen(prefix)));
+      ierr = 1;
+    }
+    PetscCall(PetscOptionsLeftRestore(o, &N, &names, &values));
+  }
+  PetscCall(PetscOptionsDestroy(&o));
+  if (ierr == 1) SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s", err);
+  PetscCall(ierr);
+  for (int j = 0; j < t->npatch; j++) t->patch[j].sense *= sign;
   PetscFunctionReturn(0);
 }
 
@@ -655,10 +797,13 @@ PetscErrorCode ToolsCreateFromOptions(MPI_Comm comm, PetscInt *ntools, Tool **to
     PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "tool_%s_", T[k].name));
     PetscCall(PetscSNPrintf(title, sizeof(title), "Tool %s", T[k].name));
     /* an error inside the block is raised after it is closed (nothing of the block leaks) */
+    char file[PETSC_MAX_PATH_LEN] = "";
+    int  tfile                    = 0;
     PetscOptionsBegin(comm, prefix, title, NULL);
-    ierr = ToolSetFromOptions(PetscOptionsObject, &T[k]);
+    ierr = ToolSetFromOptions(PetscOptionsObject, &T[k], file, &tfile);
     PetscOptionsEnd();
     PetscCall(ierr);
+    if (tfile) PetscCall(ToolPatchesFromFile(comm, &T[k], prefix, title, file, tfile));
     PetscCall(ToolSetUp(&T[k]));
   }
   PetscFunctionReturn(0);

@@ -34,6 +34,9 @@ struct _PatchOps {
   /* a type's own closest-point search replacing start + PatchMinimize (plane: exact; Coons:
      sample grid, Newton and its safeguards); returns 1 if skipped. L = the patch's scale */
   int (*closest)(const Patch *p, const double y[3], double maxdist, double L, PatchCandidate *c);
+  /* closest with a hint: the parameters (hxi, heta) of an earlier projection on this patch; must
+     give the same result as closest (only faster). NULL: closest */
+  int (*closesthint)(const Patch *p, const double y[3], double maxdist, double L, double hxi, double heta, PatchCandidate *c);
   /* dn/dy at a projection (PatchNormalDerivative; dn is zeroed before). NULL: 0 (plane) */
   int (*normalderivative)(const Patch *p, const double shift[3], const double y[3], const Projection *pr, double dn[9]);
   /* reference bounding box. NULL: PatchBoxSampled */

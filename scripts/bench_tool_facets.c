@@ -1,0 +1,108 @@
+/* Projection cost on a meshed tool surface (scripts/bench_tool_facets.py builds and runs this):
+   bench_tool_facets -tool_names s -tool_s_file sphere.stl [-tool_s_smooth 0] -bench_queries N
+   prints one line: facets, build seconds, bytes per facet, ns per ToolProject and per
+   ToolProjectHint (hint: the projection of a point 1e-3 R away, as a node's previous pairing),
+   the queries in random order, then the same in a spatially coherent order (sorted along a
+   Morton curve, as a mesh's nodes come), smoothing */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "tool.h"
+#include "../src/tool/facets.h"
+
+static double now(void)
+{
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static double mkey(const double y[3], double R)
+{ /* Morton code of y in the box [-1.1 R, 1.1 R]^3, 21 bits per axis */
+  unsigned long long k = 0;
+  unsigned           c[3];
+  for (int i = 0; i < 3; i++) c[i] = (unsigned)((y[i] / (2.2 * R) + 0.5) * 2097151.0);
+  for (int b = 20; b >= 0; b--)
+    for (int i = 0; i < 3; i++) k = (k << 1) | ((c[i] >> b) & 1u);
+  return (double)k;
+}
+
+typedef struct {
+  double key;
+  int    k;
+} Key;
+static int CmpKey(const void *a, const void *b) { return ((const Key *)a)->key < ((const Key *)b)->key ? -1 : ((const Key *)a)->key > ((const Key *)b)->key; }
+
+static void Time(const Tool *T, const double *Y, const Projection *P, const int *ord, PetscInt nq, double *tp, double *th, double *acc)
+{
+  const double sh[3] = {0, 0, 0};
+  double       t0    = now();
+  for (PetscInt q = 0; q < nq; q++) {
+    Projection pr;
+    ToolProject(T, sh, &Y[3 * ord[q]], PETSC_INFINITY, &pr);
+    *acc += pr.gap;
+  }
+  *tp = now() - t0;
+  t0  = now();
+  for (PetscInt q = 0; q < nq; q++) {
+    Projection pr;
+    ToolProjectHint(T, sh, &Y[3 * ord[q]], PETSC_INFINITY, &P[ord[q]], &pr);
+    *acc -= pr.gap;
+  }
+  *th = now() - t0;
+}
+
+
+int main(int argc, char **argv)
+{
+  PetscInt n, nq = 200000;
+  Tool    *T;
+  double   t0, tb, acc = 0, sh[3] = {0, 0, 0};
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-bench_queries", &nq, NULL));
+  t0 = now();
+  PetscCall(ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T));
+  tb                  = now() - t0;
+  const FacetsData *m = (const FacetsData *)T[0].patch[0].data;
+  const double      R = 0.5 * (T[0].bbox[1] - T[0].bbox[0]);
+  double           *Y, *Z;
+  Projection       *P;
+  PetscCall(PetscMalloc3(3 * nq, &Y, 3 * nq, &Z, nq, &P));
+  srand(1);
+  for (PetscInt k = 0; k < nq; k++) { /* near the surface: radius 0.95 R to 1.05 R, any direction */
+    double d[3], l;
+    do {
+      for (int i = 0; i < 3; i++) d[i] = 2.0 * rand() / RAND_MAX - 1.0;
+      l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    } while (l > 1.0 || l < 1e-3);
+    const double r = R * (0.95 + 0.1 * rand() / RAND_MAX);
+    for (int i = 0; i < 3; i++) {
+      Y[3 * k + i] = r * d[i] / l;
+      Z[3 * k + i] = Y[3 * k + i] + 1e-3 * R * (2.0 * rand() / RAND_MAX - 1.0);
+    }
+  }
+  for (PetscInt k = 0; k < nq; k++) ToolProject(&T[0], sh, &Z[3 * k], PETSC_INFINITY, &P[k]); /* the hints */
+  {
+    int   *ord;
+    Key   *key;
+    double tr, thr, tc, thc;
+    PetscCall(PetscMalloc2(nq, &ord, nq, &key));
+    for (PetscInt k = 0; k < nq; k++) ord[k] = (int)k;
+    Time(&T[0], Y, P, ord, nq, &tr, &thr, &acc);
+    for (PetscInt k = 0; k < nq; k++) {
+      key[k].key = mkey(&Y[3 * k], R);
+      key[k].k   = (int)k;
+    }
+    qsort(key, nq, sizeof(*key), CmpKey);
+    for (PetscInt k = 0; k < nq; k++) ord[k] = key[k].k;
+    Time(&T[0], Y, P, ord, nq, &tc, &thc, &acc);
+    printf("%d %.3f %.1f %.1f %.1f %.1f %.1f %d %g\n", m->nf, tb, (double)FacetsBytes(m) / m->nf, 1e9 * tr / nq, 1e9 * thr / nq, 1e9 * tc / nq, 1e9 * thc / nq, m->smooth, acc);
+    PetscCall(PetscFree2(ord, key));
+  }
+  PetscCall(PetscFree3(Y, Z, P));
+  PetscCall(ToolsDestroy(n, &T));
+  PetscCall(PetscFinalize());
+  return 0;
+}

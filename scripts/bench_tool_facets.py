@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""Projection cost on meshed tool surfaces from 1e2 to 1e6 facets (doc/performance.md, section
+"Meshed tool surfaces").
+
+A unit sphere triangulated from an octahedron (8 k^2 triangles, k = 4 ... 354) is written as a
+binary STL; scripts/bench_tool_facets.c (compiled here against build/lib.a: run `make` first) reads
+it as a tool and times ToolProject and ToolProjectHint on points within 5 % of the radius of the
+surface, raw facets and smoothed (Nagata), one core: the queries in random order, and sorted
+along a Morton curve (spatially coherent, as the nodes of a mesh come).
+
+  /usr/bin/python3 scripts/bench_tool_facets.py [--ks 4,11,35,112,354] [--queries 200000]
+                                                [--output doc/performance.md]
+Prints the table and writes the section "## Meshed tool surfaces" of the output file, keeping its
+other sections (--output '' : print only).
+"""
+import argparse
+import os
+import resource
+import struct
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import benchutil  # noqa: E402
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+
+
+def sphere_stl(path, k):
+    O = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
+    Fc = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
+    tris = []
+    for a, b, c in Fc:
+        i, j = np.meshgrid(np.arange(k + 1), np.arange(k + 1), indexing="ij")
+        P = O[a][None, None, :] + (O[b] - O[a])[None, None, :] * i[..., None] / k + (O[c] - O[a])[None, None, :] * j[..., None] / k
+        P /= np.linalg.norm(P, axis=2)[..., None]
+        ii, jj = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")
+        lo = (ii + jj) < k
+        t1 = np.stack([P[ii, jj], P[ii + 1, jj], P[ii, jj + 1]], axis=2)[lo]
+        hi = (ii + jj) < k - 1
+        t2 = np.stack([P[ii + 1, jj], P[ii + 1, jj + 1], P[ii, jj + 1]], axis=2)[hi]
+        tris.append(t1)
+        tris.append(t2)
+    T = np.concatenate(tris).astype(np.float32)
+    rec = np.zeros(len(T), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
+    rec["v"] = T
+    with open(path, "wb") as fp:
+        fp.write(b"bench sphere".ljust(80, b" "))
+        fp.write(struct.pack("<I", len(T)))
+        fp.write(rec.tobytes())
+    return len(T)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--ks", default="4,11,35,112,354")
+    ap.add_argument("--queries", type=int, default=200000)
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    a = ap.parse_args()
+    exe = os.path.join(ROOT, "build", "bench_tool_facets")
+    pc = lambda *x: subprocess.check_output(["pkg-config"] + list(x) + ["PETSc"], text=True).split()
+    h5 = "/usr/lib/x86_64-linux-gnu/hdf5/openmpi"
+    subprocess.check_call(["mpicc", "-O3", "-march=native", "-std=c11", "-I" + os.path.join(ROOT, "include")] + pc("--cflags") +
+                          [os.path.join(ROOT, "scripts", "bench_tool_facets.c"), os.path.join(ROOT, "build", "lib.a"), "-o", exe] + pc("--libs") +
+                          ["-L" + h5 + "/lib", "-L" + h5, "-lhdf5", "-ldmumps", "-lmumps_common", "-lmetis", "-lm"])
+    rows, vals = [], []
+    busy0 = benchutil.cpu_busy_seconds()
+    import time
+    t0 = time.time()
+    head = "| facets | smoothing | build (s) | bytes per facet | ToolProject, random order (us) | ToolProjectHint, random (us) | ToolProject, coherent order (us) | ToolProjectHint, coherent (us) | peak memory (MB) |\n|---|---|---|---|---|---|---|---|---|"
+    print(head)
+    with tempfile.TemporaryDirectory() as d:
+        for k in [int(x) for x in a.ks.split(",")]:
+            path = os.path.join(d, "sphere_%d.stl" % k)
+            sphere_stl(path, k)
+            for smooth in (0, 1):
+                cmd = ["/usr/bin/time", "-f", "%M", exe, "-tool_names", "s", "-tool_s_file", path, "-tool_s_smooth", str(smooth), "-bench_queries", str(a.queries)]
+                r = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1"))
+                if r.returncode:
+                    sys.exit(r.stderr)
+                nf, tb, bpf, tr, thr, tc, thc, sm, _ = r.stdout.split()
+                mem = int(r.stderr.strip().splitlines()[-1]) / 1024.0
+                vals.append((int(nf), smooth, float(tr) / 1e3, float(thr) / 1e3, float(tc) / 1e3, float(thc) / 1e3))
+                rows.append("| %s | %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.0f |" % (nf, "Nagata" if smooth else "raw", tb, bpf, float(tr) / 1e3, float(thr) / 1e3, float(tc) / 1e3, float(thc) / 1e3, mem))
+                print(rows[-1])
+                sys.stdout.flush()
+    wall = time.time() - t0
+    busy1 = benchutil.cpu_busy_seconds()
+    busy = (busy1 - busy0) / wall if busy0 is not None and busy1 is not None else float("nan")
+    if a.output:
+        commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+        cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
+        body = ["## Meshed tool surfaces", "", "Measured by `scripts/bench_tool_facets.py` on %s: %s, %d cores; commit %s; %d queries per row, one core; busy cores of the machine during the run, this benchmark's included: %.2f (mean)." % (time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), cpu, os.cpu_count(), commit, a.queries, busy), "",
+                "A unit sphere triangulated from an octahedron (8 k² triangles) read from a binary STL as a `facets` tool; query points uniformly in direction at 0.95 R to 1.05 R from the centre. `ToolProject` (the hierarchy from its root) and `ToolProjectHint` (with the projection of a point 1e-3 R away as the hint, as a node's previous pairing), in random order, and in a spatially coherent order (sorted along a Morton curve, as the nodes of a mesh come). Raw facets: the closest triangle. Nagata: the smoothed surface (candidates within d + 2δ, Newton on each). Bytes per facet: the tool's storage (`FacetsBytes`: vertices, connectivity, neighbours, corner normals, edge flags, hierarchy) over the triangles; peak memory: the process's maximum resident size (reading the file and building the tool included; PETSc's own about 40 MB).", "",
+                head] + rows + ["",
+                ]
+        for smooth in (0, 1):
+            v = [x for x in vals if x[1] == smooth]
+            if len(v) < 2:
+                continue
+            lo, hi = v[0], v[-1]
+            for col, what in ((2, "random order"), (4, "coherent order"), (5, "coherent order with the hint")):
+                body.append("%s, %s: %.2f µs at %d facets, %.2f µs at %d (ratio %.1f; target: ratio ≤ 2 and ≤ 5 µs at 1e6: %s)." % ("Nagata" if smooth else "Raw facets", what, lo[col], lo[0], hi[col], hi[0], hi[col] / lo[col], "met" if hi[col] / lo[col] <= 2 and hi[col] <= 5 else "not met"))
+                body.append("")
+        body.append("Where the time goes at 1e6 facets: the hierarchy has about 20 levels and the tool takes 80 MB, so a query in random order misses the cache at most levels and on the facets' data; in a coherent order the upper levels stay cached. The hint (a greedy walk from the previous facet, then the search from the root with its bound) gives the same projection bit for bit and about the same cost here; its bound mostly saves the leaf tests that the nearest-child-first descent already avoids.")
+        benchutil.write_doc_section(a.output, "## Meshed tool surfaces", "\n".join(body) + "\n")
+
+
+if __name__ == "__main__":
+    main()

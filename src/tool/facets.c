@@ -1,0 +1,657 @@
+/* Patch type "facets": a meshed tool surface (triangles; quadrangles are split in two along their
+   shorter diagonal) read from a file (facetsio.c), stored compactly (one vertex array, three
+   vertex ids, three neighbours and three corner-normal ids per triangle, a bounding-volume
+   hierarchy in the tool's reference frame), doc/tools.md "Meshed surfaces".
+
+   Parameters: a point of triangle f with local coordinates (u, v) (x = P0 + u (P1 - P0) + v (P2 - P0))
+   is (xi, eta) = (4 (f / 1024) + u, 4 (f % 1024) + v): the facet is decoded from the integer part
+   of (xi + 1.5)/4 and (eta + 1.5)/4, so that (xi + 0.01, eta) (the frame chord of the contact
+   object) stays on the same facet, continued over its plane.
+
+   Projection (closest): the facet of the closest point by the hierarchy (ties: the smallest facet
+   index, so that the result is independent of the traversal and of a hint). Smoothed (default):
+   the contact normal is the normalised interpolation m(u, v) of the facet's corner normals (the
+   angle-weighted average of the facet normals around the vertex, split at edges sharper than the
+   feature angle), continuous across smooth edges, and the point is found along that field:
+   y = x(u, v) + g m(u, v), by Newton on (u, v, g) from the closest point, walking to the neighbour
+   across the edge the solution leaves by. Raw (-smooth 0) or where the field gives no point: the
+   closest point with the (interpolated or facet) normal there. A closest point on an open edge of
+   the surface with y beside it (beyond the edge in the facet's plane by more than 1e-9 of the
+   facet's size) is no contact: the patch is skipped. */
+#include "facets.h"
+
+#include <float.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "options.h"
+
+/* ------------------------------------------------------------------ parameters */
+
+static inline void FacetsEncode(int f, double u, double v, double *xi, double *eta)
+{
+  *xi  = 4.0 * (double)(f >> 10) + u;
+  *eta = 4.0 * (double)(f & 1023) + v;
+}
+
+static inline int FacetsDecode(const FacetsData *m, double xi, double eta, double *u, double *v)
+{
+  const double fh = floor((xi + 1.5) / 4.0), fl = floor((eta + 1.5) / 4.0);
+  long         f  = (long)fh * 1024 + (long)fl;
+  *u              = xi - 4.0 * fh;
+  *v              = eta - 4.0 * fl;
+  if (f < 0) f = 0;
+  if (f >= m->nf) f = m->nf - 1;
+  return (int)f;
+}
+
+static inline void Corner(const FacetsData *m, int f, int i, double P[3])
+{
+  const double *X = &m->V[3 * m->F[3 * f + i]];
+  P[0]            = X[0];
+  P[1]            = X[1];
+  P[2]            = X[2];
+}
+
+/* Nagata's curvature coefficient of the edge from a to b (d = b - a) with unit normals na, nb:
+   the edge curve a + t d - c t (1 - t) is normal to na at a and to nb at b, c in span(na, nb):
+   with v = (na + nb)/2, dv = (na - nb)/2, c = (dv.d)/|v|^2 v (the arc) + (v.d)/|dv|^2 dv (the
+   S-shaped part). The S part is capped at 2 |dv| |d| (about the angle between the normals times
+   |d|): with nearly parallel normals that are not both normal to d (noise) it would blow up.
+   Symmetric: the edge gives the same curve from either facet. */
+static void NagataCoefficient(const double d[3], const double na[3], const double nb[3], double c[3])
+{
+  double       v[3], dv[3];
+  for (int i = 0; i < 3; i++) {
+    v[i]  = 0.5 * (na[i] + nb[i]);
+    dv[i] = 0.5 * (na[i] - nb[i]);
+  }
+  const double A = Dot(dv, dv), B = Dot(v, v), ld = Norm(d);
+  double       ka = B > 0.0 ? Dot(dv, d) / B : 0.0, ks = A > 0.0 ? Dot(v, d) / A : 0.0;
+  const double cap = 2.0 * sqrt(A) * ld, ls = fabs(ks) * sqrt(A);
+  if (ls > cap) ks *= cap / ls;
+  for (int i = 0; i < 3; i++) c[i] = ka * v[i] + ks * dv[i];
+}
+
+/* The facet's surface: the plane triangle (raw), or Nagata's quadratic patch
+   x = P0 w + P1 u + P2 v - c01 u w - c12 u v - c20 v w (w = 1 - u - v) through its curved edges
+   (a sharp edge, one whose sides' normals differ by more than the feature angle, stays straight);
+   its data set once per facet (FacetGeomSet) and evaluated (FacetGeomEval) */
+typedef struct {
+  double P0[3], e1[3], e2[3], c[3][3];
+} FacetGeom;
+
+static void FacetGeomSet(const FacetsData *m, int f, FacetGeom *g)
+{
+  double P[3][3];
+  for (int k = 0; k < 3; k++) Corner(m, f, k, P[k]);
+  for (int i = 0; i < 3; i++) {
+    g->P0[i] = P[0][i];
+    g->e1[i] = P[1][i] - P[0][i];
+    g->e2[i] = P[2][i] - P[0][i];
+  }
+  for (int e = 0; e < 3; e++) {
+    for (int i = 0; i < 3; i++) g->c[e][i] = 0.0;
+    if (m->smooth && (m->curved[f] & (1 << e))) {
+      const int    a = e, b = (e + 1) % 3;
+      const double d[3] = {P[b][0] - P[a][0], P[b][1] - P[a][1], P[b][2] - P[a][2]};
+      NagataCoefficient(d, &m->N[3 * m->C[3 * f + a]], &m->N[3 * m->C[3 * f + b]], g->c[e]);
+    }
+  }
+}
+
+static inline void FacetGeomEval(const FacetGeom *g, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv)
+{
+  const double w = 1.0 - u - v;
+  for (int i = 0; i < 3; i++) {
+    x[i]  = g->P0[i] + u * g->e1[i] + v * g->e2[i] - g->c[0][i] * u * w - g->c[1][i] * u * v - g->c[2][i] * v * w;
+    xu[i] = g->e1[i] - g->c[0][i] * (w - u) - g->c[1][i] * v + g->c[2][i] * v;
+    xv[i] = g->e2[i] + g->c[0][i] * u - g->c[1][i] * u - g->c[2][i] * (w - v);
+    if (xuu) xuu[i] = 2.0 * g->c[0][i];
+    if (xuv) xuv[i] = g->c[0][i] - g->c[1][i] + g->c[2][i];
+    if (xvv) xvv[i] = 2.0 * g->c[2][i];
+  }
+}
+
+static void FacetEvalLocal(const FacetsData *m, int f, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv)
+{
+  FacetGeom g;
+  FacetGeomSet(m, f, &g);
+  FacetGeomEval(&g, u, v, x, xu, xv, xuu, xuv, xvv);
+}
+
+static void FacetsEval(const Patch *p, double xi, double eta, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv)
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  double            u, v;
+  const int         f = FacetsDecode(m, xi, eta, &u, &v);
+  FacetEvalLocal(m, f, u, v, x, xu, xv, xuu, xuv, xvv);
+}
+
+static double FacetsNormal(const Patch *p, double xi, double eta, double n[3])
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  double            u, v, x[3], xu[3], xv[3], l;
+  const int         f = FacetsDecode(m, xi, eta, &u, &v);
+  FacetEvalLocal(m, f, u, v, x, xu, xv, NULL, NULL, NULL);
+  Cross(xu, xv, n);
+  l = Norm(n);
+  for (int i = 0; i < 3; i++) n[i] = l > 0.0 ? SenseSign(p) * n[i] / l : 0.0;
+  return l;
+}
+
+/* ------------------------------------------------------------------ closest point on a triangle */
+
+/* Closest point of y on triangle f (Ericson, Real-Time Collision Detection 5.1.5): local (u, v),
+   squared distance, region: 0 interior, 1 + e on edge e (0: P0P1, 1: P1P2, 2: P2P0), 4 + i at
+   vertex i */
+static double TriClosest(const FacetsData *m, int f, const double y[3], double *uo, double *vo, int *region)
+{
+  double a[3], b[3], c[3], ab[3], ac[3], ap[3], bp[3], cp[3], x[3], u, v;
+  int    reg;
+  Corner(m, f, 0, a);
+  Corner(m, f, 1, b);
+  Corner(m, f, 2, c);
+  for (int i = 0; i < 3; i++) {
+    ab[i] = b[i] - a[i];
+    ac[i] = c[i] - a[i];
+    ap[i] = y[i] - a[i];
+    bp[i] = y[i] - b[i];
+    cp[i] = y[i] - c[i];
+  }
+  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap), d3 = Dot(ab, bp), d4 = Dot(ac, bp), d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (d1 <= 0.0 && d2 <= 0.0) {
+    u = v = 0.0;
+    reg   = 4;
+  } else if (d3 >= 0.0 && d4 <= d3) {
+    u   = 1.0;
+    v   = 0.0;
+    reg = 5;
+  } else if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    u   = d1 / (d1 - d3);
+    v   = 0.0;
+    reg = 1;
+  } else if (d6 >= 0.0 && d5 <= d6) {
+    u   = 0.0;
+    v   = 1.0;
+    reg = 6;
+  } else if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    u   = 0.0;
+    v   = d2 / (d2 - d6);
+    reg = 3;
+  } else if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    u              = 1.0 - w;
+    v              = w;
+    reg            = 2;
+  } else {
+    const double den = 1.0 / (va + vb + vc);
+    u                = vb * den;
+    v                = vc * den;
+    reg              = 0;
+  }
+  for (int i = 0; i < 3; i++) x[i] = a[i] + u * ab[i] + v * ac[i];
+  *uo     = u;
+  *vo     = v;
+  *region = reg;
+  return Dist2(x, y);
+}
+
+/* ------------------------------------------------------------------ hierarchy */
+
+typedef struct {
+  double d2;
+  int    f;
+} Best;
+
+static inline int Better(double d2, int f, const Best *b) { return d2 < b->d2 || (d2 == b->d2 && f < b->f); }
+
+static inline double BoxDist2(const FacetsNode *n, const double y[3])
+{
+  double s = 0.0;
+  for (int i = 0; i < 3; i++) {
+    const double o = fmax((double)n->lo[i] - y[i], y[i] - (double)n->hi[i]);
+    if (o > 0.0) s += o * o;
+  }
+  return s;
+}
+
+/* the closest facet (smallest squared distance, then the smallest index) among those closer than
+   b on entry; b unchanged if none */
+/* the closest facet (smallest squared distance, then the smallest index) among those closer than
+   b on entry; b unchanged if none. With list (smoothed surfaces): also every facet within
+   sqrt(b) + 2 dev of y (a superset: filtered by FacetsFinish), at most 256 */
+static void TreeClosestCollect(const FacetsData *m, const double y[3], Best *b, Best *list, int *nl)
+{
+  int    stack[128], ns = 0;
+  double R2 = b->d2;
+  if (!m->nnode) return;
+  if (list) {
+    *nl = 0;
+    R2  = b->d2 < HUGE_VAL ? (sqrt(b->d2) + 2.0 * m->dev) * (sqrt(b->d2) + 2.0 * m->dev) * (1.0 + 1e-12) : HUGE_VAL;
+  }
+  stack[ns++] = 0;
+  while (ns) {
+    const FacetsNode *n = &m->node[stack[--ns]];
+    if (BoxDist2(n, y) > R2) continue;
+    if (n->count > 0) {
+      for (int k = n->first; k < n->first + n->count; k++) {
+        double       u, v;
+        int          reg;
+        const double d2 = TriClosest(m, k, y, &u, &v, &reg);
+        if (Better(d2, k, b)) {
+          b->d2 = d2;
+          b->f  = k;
+          if (list) R2 = (sqrt(d2) + 2.0 * m->dev) * (sqrt(d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+          else R2 = d2;
+        }
+        if (list && d2 <= R2 && *nl < 256) {
+          list[*nl].d2 = d2;
+          list[(*nl)++].f = k;
+        }
+      }
+    } else {
+      const int    l = n->first, r = n->first + 1;
+      const double dl = BoxDist2(&m->node[l], y), dr = BoxDist2(&m->node[r], y);
+      if (dl <= dr) { /* the nearer child is popped first */
+        if (dr <= R2 && ns < 128) stack[ns++] = r;
+        if (dl <= R2 && ns < 128) stack[ns++] = l;
+      } else {
+        if (dl <= R2 && ns < 128) stack[ns++] = l;
+        if (dr <= R2 && ns < 128) stack[ns++] = r;
+      }
+    }
+  }
+}
+
+static void TreeClosest(const FacetsData *m, const double y[3], Best *b) { TreeClosestCollect(m, y, b, NULL, NULL); }
+
+/* ------------------------------------------------------------------ projection */
+
+/* Newton on |x(u, v) - y|^2 / 2 over facet f's (extended) patch from (u, v); returns 0 when it
+   converged (inside the facet or not) */
+static int PatchNewton(const FacetGeom *gm, const double y[3], double *uo, double *vo)
+{
+  double u = *uo, v = *vo, last = HUGE_VAL;
+  for (int it = 0; it < 40; it++) {
+    double x[3], xu[3], xv[3], xuu[3], xuv[3], xvv[3], r[3], g[2], H[3], det, d[2];
+    FacetGeomEval(gm, u, v, x, xu, xv, xuu, xuv, xvv);
+    for (int i = 0; i < 3; i++) r[i] = x[i] - y[i];
+    g[0] = Dot(r, xu);
+    g[1] = Dot(r, xv);
+    H[0] = Dot(xu, xu) + Dot(r, xuu);
+    H[1] = Dot(xu, xv) + Dot(r, xuv);
+    H[2] = Dot(xv, xv) + Dot(r, xvv);
+    det  = H[0] * H[2] - H[1] * H[1];
+    if (!(H[0] > 0.0 && det > 1e-14 * H[0] * H[2])) { /* Gauss-Newton */
+      H[0] = Dot(xu, xu);
+      H[1] = Dot(xu, xv);
+      H[2] = Dot(xv, xv);
+      det  = H[0] * H[2] - H[1] * H[1];
+      if (!(det > 0.0)) return 1;
+    }
+    d[0] = -(H[2] * g[0] - H[1] * g[1]) / det;
+    d[1] = -(H[0] * g[1] - H[1] * g[0]) / det;
+    const double dl = fabs(d[0]) + fabs(d[1]);
+    if (dl > 0.5) {
+      d[0] *= 0.5 / dl;
+      d[1] *= 0.5 / dl;
+    }
+    u += d[0];
+    v += d[1];
+    last = fabs(d[0]) + fabs(d[1]);
+    if (last < 1e-13) {
+      *uo = u;
+      *vo = v;
+      return 0;
+    }
+    if (u < -1.0 || v < -1.0 || u + v > 2.0) break;
+  }
+  *uo = u;
+  *vo = v;
+  return last < 1e-9 ? 0 : 2; /* converged to round-off; or no convergence within the neighbourhood */
+}
+
+/* closest point on edge e of facet f's patch (1D Newton on the edge parameter, clamped) */
+static void EdgeClosest(const FacetGeom *gm, int e, const double y[3], double *uo, double *vo)
+{
+  double t = e == 0 ? *uo : (e == 1 ? *vo : 1.0 - *vo);
+  t        = Clamp01(t);
+  for (int it = 0; it < 40; it++) {
+    double x[3], xu[3], xv[3], xuu[3], xuv[3], xvv[3], xt[3], xtt[3], r[3], u, v;
+    if (e == 0) u = t, v = 0.0;
+    else if (e == 1) u = 1.0 - t, v = t;
+    else u = 0.0, v = 1.0 - t;
+    FacetGeomEval(gm, u, v, x, xu, xv, xuu, xuv, xvv);
+    for (int i = 0; i < 3; i++) {
+      r[i] = x[i] - y[i];
+      if (e == 0) xt[i] = xu[i], xtt[i] = xuu[i];
+      else if (e == 1) xt[i] = xv[i] - xu[i], xtt[i] = xuu[i] - 2.0 * xuv[i] + xvv[i];
+      else xt[i] = -xv[i], xtt[i] = xvv[i];
+    }
+    double h = Dot(xt, xt) + Dot(r, xtt);
+    if (!(h > 0.0)) h = Dot(xt, xt);
+    const double tn = Clamp01(t - Dot(r, xt) / h), dt = tn - t;
+    t               = tn;
+    if (fabs(dt) < 1e-14) break;
+  }
+  if (e == 0) *uo = t, *vo = 0.0;
+  else if (e == 1) *uo = 1.0 - t, *vo = t;
+  else *uo = 0.0, *vo = 1.0 - t;
+}
+
+/* closest point of y on facet f's patch (its triangle): Newton inside, else the best of its three
+   edges; *edge = -1 inside, else the edge (0: P0P1, 1: P1P2, 2: P2P0) */
+static double PatchClosestLocal(const FacetsData *m, int f, const double y[3], double *uo, double *vo, int *edge)
+{
+  double    u, v, x[3], xu[3], xv[3], best = HUGE_VAL;
+  int       reg;
+  FacetGeom gm;
+  TriClosest(m, f, y, &u, &v, &reg);
+  FacetGeomSet(m, f, &gm);
+  {
+    double uc = u, vc = v;
+    if (!PatchNewton(&gm, y, &uc, &vc) && uc >= 0.0 && vc >= 0.0 && uc + vc <= 1.0) {
+      FacetGeomEval(&gm, uc, vc, x, xu, xv, NULL, NULL, NULL);
+      *uo   = uc;
+      *vo   = vc;
+      *edge = -1;
+      return Dist2(x, y);
+    }
+  }
+  for (int e = 0; e < 3; e++) {
+    double ue = u, ve = v;
+    EdgeClosest(&gm, e, y, &ue, &ve);
+    FacetGeomEval(&gm, ue, ve, x, xu, xv, NULL, NULL, NULL);
+    const double d2 = Dist2(x, y);
+    if (d2 < best) {
+      best  = d2;
+      *uo   = ue;
+      *vo   = ve;
+      *edge = e;
+    }
+  }
+  return best;
+}
+
+/* The closest point from the hierarchy's answer b (the closest plane triangle). Raw facets: that
+   triangle. Smoothed: every facet whose triangle lies within sqrt(b) + 2 dev of y (dev: the largest
+   distance of a patch from its triangle) is a candidate; on each, the closest point of its patch;
+   the smallest distance wins (ties: the smallest facet index). A point beside an open edge (its
+   tangential offset above 1e-9 of the facet's size) is no contact (1). */
+static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], double L, const Best *b, Best *list, const int *nl, PatchCandidate *c)
+{
+  double u, v, x[3], xu[3], xv[3], P0[3], P1[3], P2[3];
+  int    reg, f = b->f;
+  TriClosest(m, f, y, &u, &v, &reg);
+  if (m->smooth) {
+    Best         bb = {HUGE_VAL, INT_MAX}, tmp;
+    int          edge = -1, nc = 0;
+    const double r  = sqrt(b->d2) + 2.0 * m->dev, r2 = r * r * (1.0 + 1e-12);
+    for (int k = 0; k < *nl; k++) /* the candidates within sqrt(b) + 2 dev, by distance, then index */
+      if (list[k].d2 <= r2) {
+        int j = nc++;
+        tmp   = list[k];
+        while (j > 0 && Better(tmp.d2, tmp.f, &list[j - 1])) {
+          list[j] = list[j - 1];
+          j--;
+        }
+        list[j] = tmp;
+      }
+    for (int k = 0; k < nc; k++) {
+      double uk = 0.0, vk = 0.0;
+      int    ek = -1;
+      if (sqrt(list[k].d2) - m->dev > sqrt(bb.d2) * (1.0 + 1e-12)) break; /* no patch farther on can be closer */
+      const double d2 = PatchClosestLocal(m, list[k].f, y, &uk, &vk, &ek);
+      if (Better(d2, list[k].f, &bb)) {
+        bb.d2 = d2;
+        bb.f  = list[k].f;
+        u     = uk;
+        v     = vk;
+        edge  = ek;
+      }
+    }
+    if (bb.f != INT_MAX) f = bb.f;
+    reg = edge < 0 ? 0 : 1 + edge;
+    if (reg && m->adj[3 * f + edge] != -1) { /* on a shared edge: at an open vertex? */
+      const double w = 1.0 - u - v;
+      if (u <= 0.0 && v <= 0.0) reg = 4;
+      else if (u >= 1.0) reg = 5;
+      else if (v >= 1.0) reg = 6;
+      else if (w >= 1.0) reg = 4;
+    }
+  }
+  /* beside an open edge or at an open vertex: no contact */
+  if (reg) {
+    int open = 0;
+    if (reg <= 3) open = m->adj[3 * f + reg - 1] == -1;
+    else open = m->vbnd[m->F[3 * f + reg - 4]];
+    if (open) {
+      double n[3], rr[3];
+      FacetEvalLocal(m, f, u, v, x, xu, xv, NULL, NULL, NULL);
+      Cross(xu, xv, n);
+      const double ln = Norm(n);
+      for (int i = 0; i < 3; i++) {
+        n[i] /= ln;
+        rr[i] = y[i] - x[i];
+      }
+      const double rn = Dot(rr, n), t2 = Dot(rr, rr) - rn * rn;
+      Corner(m, f, 0, P0);
+      Corner(m, f, 1, P1);
+      Corner(m, f, 2, P2);
+      const double hf = sqrt(fmax(Dist2(P0, P1), fmax(Dist2(P1, P2), Dist2(P2, P0))));
+      if (t2 > 1e-18 * hf * hf) return 1;
+    }
+  }
+  FacetEvalLocal(m, f, u, v, x, xu, xv, NULL, NULL, NULL);
+  FacetsEncode(f, u, v, &c->xi, &c->eta);
+  for (int i = 0; i < 3; i++) c->x[i] = x[i];
+  c->d2       = Dist2(x, y);
+  c->interior = 1;
+  (void)L;
+  return 0;
+}
+
+static int FacetsClosest(const Patch *p, const double y[3], double maxdist, double L, PatchCandidate *c)
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  Best              b = {maxdist < HUGE_VAL ? maxdist * maxdist : HUGE_VAL, INT_MAX}, list[256];
+  int               nl = 0;
+  TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
+  if (b.f == INT_MAX) return 1;
+  return FacetsFinish(p, m, y, L, &b, list, &nl, c);
+}
+
+/* The same result as FacetsClosest; the hint's facet and a greedy walk over its neighbours give
+   the hierarchy a small bound to start with */
+static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, double L, double hxi, double heta, PatchCandidate *c)
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  double            u, v;
+  int               reg, f = FacetsDecode(m, hxi, heta, &u, &v);
+  Best              b = {TriClosest(m, f, y, &u, &v, &reg), f};
+  for (int step = 0; step < 16; step++) {
+    int moved = 0;
+    for (int e = 0; e < 3; e++) {
+      const int nb = m->adj[3 * b.f + e];
+      if (nb < 0) continue;
+      const double d2 = TriClosest(m, nb, y, &u, &v, &reg);
+      if (Better(d2, nb, &b)) {
+        b.d2  = d2;
+        b.f   = nb;
+        moved = 1;
+      }
+    }
+    if (!moved) break;
+  }
+  if (maxdist < HUGE_VAL && b.d2 > maxdist * maxdist) {
+    b.d2 = maxdist * maxdist;
+    b.f  = INT_MAX;
+  }
+  {
+    Best list[256];
+    int  nl = 0;
+    TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
+    if (b.f == INT_MAX) return 1;
+    return FacetsFinish(p, m, y, L, &b, list, &nl, c);
+  }
+}
+
+/* dn/dy: raw facets 0 (the facet's normal). Smoothed, at a projection inside the facet: from the
+   stationarity of the closest point, H dz = [x_u x_v]^T dy (PatchProjectionParamDerivative),
+   n = s N/|N|, N = x_u x x_v, dn = (I - n n) s (N_u dz_u + N_v dz_v)/|N|. Returns 1 on an edge
+   (held there), where the caller differences. */
+static int FacetsNormalDerivative(const Patch *p, const double shift[3], const double y[3], const Projection *pr, double dn[9])
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  double            u, v, x[3], xu[3], xv[3], xuu[3], xuv[3], xvv[3], r[3], dz[2][3], N[3], Nu[3], Nv[3], a[3], b[3], n[3], l;
+  const int         fr[2] = {1, 1};
+  if (!m->smooth) return 0;
+  const int f = FacetsDecode(m, pr->xi, pr->eta, &u, &v);
+  if (u < -1e-9 || v < -1e-9 || 1.0 - u - v < -1e-9) return 1;
+  FacetEvalLocal(m, f, u, v, x, xu, xv, xuu, xuv, xvv);
+  for (int i = 0; i < 3; i++) r[i] = x[i] - (y[i] - shift[i]);
+  {
+    const double g0 = Dot(r, xu) / Norm(xu), g1 = Dot(r, xv) / Norm(xv);
+    if (fabs(g0) + fabs(g1) > 1e-8 * (Norm(r) + Norm(xu))) return 1; /* not stationary: held */
+  }
+  if (PatchProjectionParamDerivative(xu, xv, xuu, xuv, xvv, r, fr, dz)) return 1;
+  Cross(xu, xv, N);
+  Cross(xuu, xv, a);
+  Cross(xu, xuv, b);
+  for (int i = 0; i < 3; i++) Nu[i] = a[i] + b[i];
+  Cross(xuv, xv, a);
+  Cross(xu, xvv, b);
+  for (int i = 0; i < 3; i++) Nv[i] = a[i] + b[i];
+  l = Norm(N);
+  if (!(l > 0.0)) return 1;
+  for (int i = 0; i < 3; i++) n[i] = N[i] / l;
+  const double pu = Dot(n, Nu), pv = Dot(n, Nv), s = SenseSign(p);
+  for (int i = 0; i < 3; i++) {
+    const double nu = s * (Nu[i] - n[i] * pu) / l, nv = s * (Nv[i] - n[i] * pv) / l;
+    for (int j = 0; j < 3; j++) dn[3 * i + j] = nu * dz[0][j] + nv * dz[1][j];
+  }
+  return 0;
+}
+
+static void FacetsBox(const Patch *p, double b[6])
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  double            diag = 0.0;
+  for (int i = 0; i < 3; i++) {
+    b[2 * i]     = HUGE_VAL;
+    b[2 * i + 1] = -HUGE_VAL;
+  }
+  for (int k = 0; k < m->nv; k++)
+    for (int i = 0; i < 3; i++) {
+      b[2 * i]     = fmin(b[2 * i], m->V[3 * k + i]);
+      b[2 * i + 1] = fmax(b[2 * i + 1], m->V[3 * k + i]);
+    }
+  for (int i = 0; i < 3; i++) diag += (b[2 * i + 1] - b[2 * i]) * (b[2 * i + 1] - b[2 * i]);
+  diag = 1e-9 * sqrt(diag);
+  for (int i = 0; i < 3; i++) {
+    b[2 * i] -= diag;
+    b[2 * i + 1] += diag;
+  }
+}
+
+static double FacetsScale(const Patch *p) { return ((const FacetsData *)p->data)->L; }
+
+static PetscErrorCode FacetsSetFromOptions(PetscOptionItems *PetscOptionsObject, Patch *p, const char stem[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(FacetsPatchFromOptions(PetscOptionsObject, p, stem));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FacetsView(const Patch *p, PetscViewer v)
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+
+  PetscFunctionBeginUser;
+  if (!m) {
+    PetscCall(PetscViewerASCIIPrintf(v, "facets (empty)\n"));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscViewerASCIIPrintf(v, "facets from %s: %d triangles, %d vertices, %d open edges, sense %d, %s (feature angle %g), %.0f bytes per facet\n", m->file, m->nf, m->nv, m->nopen, p->sense, m->smooth ? "smoothed (Nagata patches)" : "raw facets", m->feature_deg, (double)FacetsBytes(m) / m->nf));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FacetsDestroy(Patch *p)
+{
+  FacetsData *m = (FacetsData *)p->data;
+
+  PetscFunctionBeginUser;
+  if (!m) PetscFunctionReturn(0);
+  PetscCall(PetscFree(m->V));
+  PetscCall(PetscFree(m->F));
+  PetscCall(PetscFree(m->adj));
+  PetscCall(PetscFree(m->C));
+  PetscCall(PetscFree(m->N));
+  PetscCall(PetscFree(m->vbnd));
+  PetscCall(PetscFree(m->curved));
+  PetscCall(PetscFree(m->node));
+  PetscCall(PetscFree(m));
+  p->data = NULL;
+  PetscFunctionReturn(0);
+}
+
+size_t FacetsBytes(const FacetsData *m)
+{
+  return sizeof(*m) + (size_t)m->nv * (3 * sizeof(double) + 1) + (size_t)m->nf * (9 * sizeof(int) + 1) + (size_t)m->nn * 3 * sizeof(double) + (size_t)m->nnode * sizeof(FacetsNode);
+}
+
+int FacetsBruteClosest(const Patch *p, const double y[3], double *d2)
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  Best              b = {HUGE_VAL, INT_MAX};
+  for (int k = 0; k < m->nf; k++) {
+    double    u, v;
+    int       reg;
+    const double e = TriClosest(m, k, y, &u, &v, &reg);
+    if (Better(e, k, &b)) {
+      b.d2 = e;
+      b.f  = k;
+    }
+  }
+  *d2 = b.d2;
+  return b.f;
+}
+
+int FacetsTreeClosest(const Patch *p, const double y[3], double *d2)
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  Best              b = {HUGE_VAL, INT_MAX};
+  TreeClosest(m, y, &b);
+  *d2 = b.d2;
+  return b.f;
+}
+
+void FacetsEvalLocal(const FacetsData *m, int f, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv) { FacetEvalLocal(m, f, u, v, x, xu, xv, xuu, xuv, xvv); }
+
+void FacetsEncodeForTest(int f, double u, double v, double *xi, double *eta) { FacetsEncode(f, u, v, xi, eta); }
+
+int FacetsOfParameters(const Patch *p, double xi, double eta, double *u, double *v) { return FacetsDecode((const FacetsData *)p->data, xi, eta, u, v); }
+
+static const PatchOps FacetsOps = {
+  .type             = "facets",
+  .eval             = FacetsEval,
+  .normal           = FacetsNormal,
+  .scale            = FacetsScale,
+  .closest          = FacetsClosest,
+  .closesthint      = FacetsClosestHint,
+  .normalderivative = FacetsNormalDerivative,
+  .box              = FacetsBox,
+  .setfromoptions   = FacetsSetFromOptions,
+  .view             = FacetsView,
+  .destroy          = FacetsDestroy,
+};
+
+PetscErrorCode PatchCreate_Facets(Patch *p)
+{
+  PetscFunctionBeginUser;
+  p->ops = &FacetsOps;
+  PetscFunctionReturn(0);
+}

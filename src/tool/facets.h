@@ -1,0 +1,57 @@
+/* Private to src/tool/: the data of a "facets" patch (facets.c) and its loader (facetsio.c) */
+#ifndef ATRITO_FACETS_H
+#define ATRITO_FACETS_H
+#include "toolimpl.h"
+
+/* a node of the bounding-volume hierarchy: a box (rounded outwards to float); a leaf holds the
+   facets first .. first+count-1, an inner node (count 0) its children first and first+1 */
+typedef struct {
+  float lo[3], hi[3];
+  int   first, count;
+} FacetsNode;
+
+typedef struct {
+  char           file[PETSC_MAX_PATH_LEN];
+  int            nv, nf, nn, nnode, nopen;
+  double        *V;     /* 3 nv: vertex coordinates (reference position)                          */
+  int           *F;     /* 3 nf: vertex ids of each triangle, counterclockwise seen from the normal */
+  int           *adj;   /* 3 nf: the neighbour across edge e (P_e P_e+1); -1 open, -2 non-manifold */
+  int           *C;     /* 3 nf: corner normal ids (into N)                                         */
+  double        *N;     /* 3 nn: unit corner normals (winding orientation; the sense applies)       */
+  unsigned char *vbnd;  /* nv: 1 on an open edge                                                    */
+  unsigned char *curved; /* nf: bit e set if edge e is smooth (shared, not sharper than the feature
+                            angle): curved by the smoothing                                        */
+  FacetsNode    *node;  /* nnode                                                                    */
+  double         L;     /* the surface's size (bounding-box diagonal)                               */
+  double         dev;   /* the largest distance of a smoothed facet from its plane triangle          */
+  int            smooth;
+  double         feature_deg;
+} FacetsData;
+
+/* what a facet file gives: vertices, triangles (and the file's id of each, for messages) */
+typedef struct {
+  int     nv, nf;
+  double *V;
+  int    *F, *fid;
+} FacetsRaw;
+
+/* reads the file on rank 0 (format: stl, msh, inp or tool from the extension unless `format` is
+   given; group: a physical group (msh) or surface / element set (inp)) and broadcasts it */
+PetscErrorCode FacetsRead(MPI_Comm comm, const char path[], const char format[], const char group[], FacetsRaw *raw);
+/* builds a facets patch from raw (taken over): orientation and manifold checks, flip, hierarchy,
+   corner normals */
+PetscErrorCode FacetsBuild(MPI_Comm comm, Patch *p, const char path[], FacetsRaw *raw, PetscBool flip, PetscBool smooth, double feature_deg);
+/* the options file, file_format, file_group, flip, smooth, feature_angle under stem (a patch's
+   stem "-patch<j>" or "" for the tool's own -file) */
+PetscErrorCode FacetsPatchFromOptions(PetscOptionItems *PetscOptionsObject, Patch *p, const char stem[]);
+/* the format of path: from `format` if set, else its extension; "" if unknown */
+void           FacetsFormat(const char path[], const char format[], char out[16]);
+size_t         FacetsBytes(const FacetsData *m);
+/* the patch of facet f at its local (u, v): point, first and second derivatives */
+void FacetsEvalLocal(const FacetsData *m, int f, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv);
+/* for the tests: the closest facet by brute force and by the hierarchy (squared distance) */
+int FacetsBruteClosest(const Patch *p, const double y[3], double *d2);
+int FacetsTreeClosest(const Patch *p, const double y[3], double *d2);
+void FacetsEncodeForTest(int f, double u, double v, double *xi, double *eta);
+int FacetsOfParameters(const Patch *p, double xi, double eta, double *u, double *v);
+#endif
