@@ -278,12 +278,21 @@ static void TreeClosest(const FacetsData *m, const double y[3], Best *b) { TreeC
    those few cells, whatever the tool's size. */
 
 #define GRID_BITS 21
+#ifndef GRID_MAXCELLS
+#define GRID_MAXCELLS 27
+#endif
 
 static inline long GridIndex(const FacetsData *m, int i, double x) { return (long)floor((x - m->go[i]) / m->gh); }
 
 static inline long long GridKey(long ix, long iy, long iz) { return ((long long)ix << (2 * GRID_BITS)) | ((long long)iy << GRID_BITS) | (long long)iz; }
 
-static inline unsigned GridSlot(long long key, int cap) { return (unsigned)(((unsigned long long)key * 0x9E3779B97F4A7C15ULL) >> 32) & (unsigned)(cap - 1); }
+static inline unsigned GridSlot(long long key, int cap)
+{ /* splitmix64's finaliser: every bit of the three indices moves the slot */
+  unsigned long long z = (unsigned long long)key;
+  z                    = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z                    = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return (unsigned)(z ^ (z >> 31)) & (unsigned)(cap - 1);
+}
 
 static const FacetsCell *GridFind(const FacetsData *m, long long key)
 {
@@ -404,11 +413,21 @@ PetscErrorCode FacetsGridBuild(FacetsData *m)
   PetscFunctionReturn(0);
 }
 
+/* a facet whose distance is known (the walk's and the grid's evaluations; listed: in the list of
+   candidates) */
+typedef struct {
+  int    f, listed;
+  double d2;
+} Seen;
+
+#define SEEN_MAX 64
+
 /* The closest facet as TreeClosestCollect from b (a facet's distance: the warm start's bound),
-   searching only the grid's cells within that bound; returns 1 (b, list untouched or to be
-   redone) when the bound spans more than 64 cells or the list would overflow: the hierarchy's
-   turn */
-static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, Best *list, int *nl)
+   searching only the grid's cells within that bound; seen: the facets already evaluated (each
+   facet is evaluated once, though it is listed in several cells). Returns 1 (b, list untouched or
+   to be redone) when the bound spans more than GRID_MAXCELLS cells or the list would overflow: the
+   hierarchy's turn */
+static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, Best *list, int *nl, Seen *seen, int *ns)
 {
   double R2 = b->d2;
   long   lo[3], hi[3];
@@ -428,7 +447,7 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
       if (hi[i] < lo[i]) return 0; /* no cell of the tool within r: none closer than b */
       n *= hi[i] - lo[i] + 1;
     }
-    if (n > 64) return 1;
+    if (n > GRID_MAXCELLS) return 1;
   }
   for (long ix = lo[0]; ix <= hi[0]; ix++)
     for (long iy = lo[1]; iy <= hi[1]; iy++)
@@ -443,10 +462,23 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
         const FacetsCell *c = GridFind(m, GridKey(ix, iy, iz));
         if (!c) continue;
         for (int j = c->start; j < c->start + c->count; j++) {
-          const int    k = m->glist[j];
-          double       u, v;
-          int          reg;
-          const double d2 = TriClosest(m, k, y, &u, &v, &reg);
+          const int k = m->glist[j];
+          int       q = 0;
+          double    d2;
+          while (q < *ns && seen[q].f != k) q++;
+          if (q < *ns) {
+            if (!list || seen[q].listed) continue;
+            d2 = seen[q].d2;
+          } else {
+            double u, v;
+            int    reg;
+            d2 = TriClosest(m, k, y, &u, &v, &reg);
+            if (*ns < SEEN_MAX) {
+              seen[*ns].f      = k;
+              seen[*ns].listed = 0;
+              seen[(*ns)++].d2 = d2;
+            } else q = -1; /* not recorded */
+          }
           if (Better(d2, k, b)) {
             b->d2 = d2;
             b->f  = k;
@@ -454,9 +486,11 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
             else R2 = d2;
           }
           if (list && d2 <= R2) {
-            int dup = 0;
-            for (int q = 0; q < *nl && !dup; q++) dup = list[q].f == k;
-            if (dup) continue;
+            if (q < 0) { /* not recorded: listed already? */
+              int dup = 0;
+              for (int t = 0; t < *nl && !dup; t++) dup = list[t].f == k;
+              if (dup) continue;
+            } else seen[q].listed = 1;
             if (*nl == 256) return 1;
             list[*nl].d2    = d2;
             list[(*nl)++].f = k;
@@ -669,15 +703,23 @@ static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, 
 {
   const FacetsData *m = (const FacetsData *)p->data;
   double            u, v;
-  int               reg, f = FacetsDecode(m, hxi, heta, &u, &v);
+  int               reg, f = FacetsDecode(m, hxi, heta, &u, &v), nl = 0, ns = 1;
   Best              b = {TriClosest(m, f, y, &u, &v, &reg), f}, list[256];
-  int               nl = 0;
+  Seen              seen[SEEN_MAX] = {{f, 0, b.d2}};
   for (int step = 0; step < 64; step++) {
     int moved = 0;
     for (int e = 0; e < 3; e++) {
       const int nb = m->adj[3 * b.f + e];
+      int       q  = 0;
       if (nb < 0) continue;
+      while (q < ns && seen[q].f != nb) q++;
+      if (q < ns) continue; /* evaluated already, not better */
       const double d2 = TriClosest(m, nb, y, &u, &v, &reg);
+      if (ns < SEEN_MAX) {
+        seen[ns].f        = nb;
+        seen[ns].listed   = 0;
+        seen[ns++].d2     = d2;
+      }
       if (Better(d2, nb, &b)) {
         b.d2  = d2;
         b.f   = nb;
@@ -690,7 +732,7 @@ static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, 
     b.d2 = maxdist * maxdist;
     b.f  = INT_MAX;
   }
-  if (b.f == INT_MAX || GridClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl)) TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
+  if (b.f == INT_MAX || GridClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl, seen, &ns)) TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
   if (b.f == INT_MAX) return 1;
   return FacetsFinish(p, m, y, L, &b, list, &nl, c);
 }
