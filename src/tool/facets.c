@@ -287,11 +287,15 @@ static inline long GridIndex(const FacetsData *m, int i, double x) { return (lon
 static inline long long GridKey(long ix, long iy, long iz) { return ((long long)ix << (2 * GRID_BITS)) | ((long long)iy << GRID_BITS) | (long long)iz; }
 
 static inline unsigned GridSlot(long long key, int cap)
-{ /* splitmix64's finaliser: every bit of the three indices moves the slot */
-  unsigned long long z = (unsigned long long)key;
-  z                    = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z                    = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return (unsigned)(z ^ (z >> 31)) & (unsigned)(cap - 1);
+{ /* blocks of 4 x 4 x 4 cells on 64 consecutive slots (neighbouring cells share cache lines), the
+     blocks scattered by splitmix64's finaliser */
+  const long long    M = (1LL << GRID_BITS) - 1;
+  const long long    ix = (key >> (2 * GRID_BITS)) & M, iy = (key >> GRID_BITS) & M, iz = key & M;
+  unsigned long long z  = (unsigned long long)GridKey(ix >> 2, iy >> 2, iz >> 2);
+  z                     = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z                     = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return (unsigned)((z << 6) | (unsigned long long)(((ix & 3) << 4) | ((iy & 3) << 2) | (iz & 3))) & (unsigned)(cap - 1);
 }
 
 static const FacetsCell *GridFind(const FacetsData *m, long long key)
@@ -373,16 +377,26 @@ PetscErrorCode FacetsGridBuild(FacetsData *m)
     while (cap < 2 * m->nf) cap *= 2;
     PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
     for (int s = 0; s < cap; s++) m->gcell[s].key = -1;
-    for (int pass = 0; pass < 2; pass++) {
-      if (pass == 1) { /* the lists' starts, then the lists */
+    for (int pass = 0; pass < 2; pass++) { /* counts, then the lists */
+      if (pass == 1) { /* the lists' starts in the order the facets first meet the cells (the
+                          hierarchy's order: neighbouring cells' lists are near), then the lists */
         int start = 0;
         PetscCall(PetscMalloc1((size_t)total, &m->glist));
-        for (int s = 0; s < cap; s++)
-          if (m->gcell[s].key >= 0) {
-            m->gcell[s].start = start;
-            start += m->gcell[s].count;
-            m->gcell[s].count = 0;
-          }
+        for (int s = 0; s < cap; s++) m->gcell[s].start = -1;
+        for (int f = 0; f < m->nf; f++) {
+          long lo[3], hi[3];
+          FacetBoxCells(m, f, lo, hi);
+          for (long ix = lo[0]; ix <= hi[0]; ix++)
+            for (long iy = lo[1]; iy <= hi[1]; iy++)
+              for (long iz = lo[2]; iz <= hi[2]; iz++) {
+                FacetsCell *c = GridInsert(m->gcell, cap, GridKey(ix, iy, iz));
+                if (c->start < 0) {
+                  c->start = start;
+                  start += c->count;
+                  c->count = 0;
+                }
+              }
+        }
         m->nglist = start;
       }
       for (int f = 0; f < m->nf; f++) {
@@ -698,7 +712,7 @@ static int FacetsClosest(const Patch *p, const double y[3], double maxdist, doub
 
 /* The same result as FacetsClosest: the hint's facet and a greedy walk over its neighbours give a
    bound, the grid's cells within that bound prove (or improve) it; where the bound spans more
-   cells, the hierarchy from its root with that bound */
+   cells, the hierarchy from its root with that bound (a walk that ends beyond maxdist: maxdist) */
 static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, double L, double hxi, double heta, PatchCandidate *c)
 {
   const FacetsData *m = (const FacetsData *)p->data;
@@ -732,7 +746,7 @@ static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, 
     b.d2 = maxdist * maxdist;
     b.f  = INT_MAX;
   }
-  if (b.f == INT_MAX || GridClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl, seen, &ns)) TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
+  if (GridClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl, seen, &ns)) TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
   if (b.f == INT_MAX) return 1;
   return FacetsFinish(p, m, y, L, &b, list, &nl, c);
 }
