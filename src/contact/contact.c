@@ -82,7 +82,8 @@ struct _p_Contact {
 };
 
 /* The tool whose closest point to y has the smallest gap (bounding boxes first). Returns the tool
-   index or -1 when no tool is within the search distance. */
+   index or -1 when no tool is within the search distance. cs: the node's committed state (NULL:
+   none), whose pairing is the hint of its tool's projection (the same result, found faster). */
 static PetscInt Pair(const struct _p_Contact *pb, const double y[3], PetscReal lambda, const ContactState *cs, Projection *best)
 {
   const Projection hint = {.patch = cs ? (int)cs->patch : -1, .xi = cs ? cs->xi : 0.0, .eta = cs ? cs->eta : 0.0};
