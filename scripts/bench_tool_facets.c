@@ -54,6 +54,50 @@ static void Time(const Tool *T, const double *Y, const Projection *P, const int 
   *th = now() - t0;
 }
 
+/* node passes, as the contact object pairs its slave nodes: nn nodes at band R of the surface
+   (radius R (1 - band) to R (1 + band)), taken in a coherent (Morton) order, each moving by up to
+   1e-3 R per pass; hinted: each query hinted by the node's previous result. ns per node-pass. */
+static double NodePasses(const Tool *T, double R, double band, int nn, int passes, int hinted, double *acc)
+{
+  const double sh[3] = {0, 0, 0};
+  double      *Y, t = 0.0;
+  Projection  *P;
+  int         *has, *ord;
+  Key         *key;
+  PetscCallAbort(PETSC_COMM_SELF, PetscMalloc5(3 * (size_t)nn * passes, &Y, nn, &P, nn, &has, nn, &ord, nn, &key));
+  srand(7);
+  for (int k = 0; k < nn; k++) {
+    double d[3], l;
+    do {
+      for (int i = 0; i < 3; i++) d[i] = 2.0 * rand() / RAND_MAX - 1.0;
+      l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    } while (l > 1.0 || l < 1e-3);
+    const double r = R * (1.0 - band + 2.0 * band * rand() / RAND_MAX);
+    for (int q = 0; q < passes; q++)
+      for (int i = 0; i < 3; i++) Y[3 * ((size_t)q * nn + k) + i] = (q ? Y[3 * ((size_t)(q - 1) * nn + k) + i] : r * d[i] / l) + (q ? 1e-3 * R * (2.0 * rand() / RAND_MAX - 1.0) : 0.0);
+    key[k].key = mkey(&Y[3 * k], R);
+    key[k].k   = k;
+    has[k]     = 0;
+  }
+  qsort(key, nn, sizeof(*key), CmpKey);
+  for (int k = 0; k < nn; k++) ord[k] = key[k].k;
+  for (int q = 0; q < passes; q++) {
+    const double t0 = now();
+    for (int j = 0; j < nn; j++) {
+      const int  k = ord[j];
+      Projection pr;
+      const int  r = hinted ? ToolProjectHint(T, sh, &Y[3 * ((size_t)q * nn + k)], PETSC_INFINITY, has[k] ? &P[k] : NULL, &pr) : ToolProject(T, sh, &Y[3 * ((size_t)q * nn + k)], PETSC_INFINITY, &pr);
+      if (!r) {
+        P[k]   = pr;
+        has[k] = 1;
+        *acc += pr.gap;
+      }
+    }
+    if (q) t += now() - t0; /* the first pass has no hints */
+  }
+  PetscCallAbort(PETSC_COMM_SELF, PetscFree5(Y, P, has, ord, key));
+  return 1e9 * t / ((double)nn * (passes - 1));
+}
 
 int main(int argc, char **argv)
 {
@@ -98,7 +142,12 @@ int main(int argc, char **argv)
     qsort(key, nq, sizeof(*key), CmpKey);
     for (PetscInt k = 0; k < nq; k++) ord[k] = key[k].k;
     Time(&T[0], Y, P, ord, nq, &tc, &thc, &acc);
-    printf("%d %.3f %.1f %.1f %.1f %.1f %.1f %d %g\n", m->nf, tb, (double)FacetsBytes(m) / m->nf, 1e9 * tr / nq, 1e9 * thr / nq, 1e9 * tc / nq, 1e9 * thc / nq, m->smooth, acc);
+    {
+      const int    nn = (int)(nq / 10 > 1000 ? nq / 10 : 1000), np = 11;
+      const double a0 = NodePasses(&T[0], R, 0.05, nn, np, 0, &acc), a1 = NodePasses(&T[0], R, 0.05, nn, np, 1, &acc);
+      const double b0 = NodePasses(&T[0], R, 1e-3, nn, np, 0, &acc), b1 = NodePasses(&T[0], R, 1e-3, nn, np, 1, &acc);
+      printf("%d %.3f %.1f %.1f %.1f %.1f %.1f %d %.1f %.1f %.1f %.1f %g\n", m->nf, tb, (double)FacetsBytes(m) / m->nf, 1e9 * tr / nq, 1e9 * thr / nq, 1e9 * tc / nq, 1e9 * thc / nq, m->smooth, a0, a1, b0, b1, acc);
+    }
     PetscCall(PetscFree2(ord, key));
   }
   PetscCall(PetscFree3(Y, Z, P));

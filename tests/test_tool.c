@@ -1411,6 +1411,69 @@ static void write_sphere_stl(const char *path, double R, int k)
   fclose(fp);
 }
 
+/* the warm start on larger spheres (1e4, 1e5 facets): nodes that move by steps of 0.1 to 3 facet
+   sizes, each query hinted by the node's previous hinted result (as the contact object does): the
+   same projection as ToolProject bit for bit, raw and smoothed, with and without a search
+   distance; raw: the facet is the brute-force closest one */
+static void test_facets_hint_large(void)
+{
+  PetscInt       n;
+  PetscErrorCode ierr;
+  const double   sh[3] = {0.1, -0.2, 0.3};
+  const int      ks[2] = {36, 112};
+  char           opts[512], path[256];
+  snprintf(path, sizeof(path), "%s/facets_hint_%d.stl", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid());
+  for (int kk = 0; kk < 2; kk++) {
+    write_sphere_stl(path, 1.0, ks[kk]);
+    for (int smooth = 0; smooth < 2; smooth++) {
+      snprintf(opts, sizeof(opts), "-tool_names s -tool_s_file %s -tool_s_file_format stl -tool_s_smooth %d", path, smooth);
+      Tool *T = facets_tools(opts, &n, &ierr);
+      if (!T) {
+        TU_CHECK(0, "facets hint sphere: %s", errmsg);
+        continue;
+      }
+      const Patch      *p = &T[0].patch[0];
+      const FacetsData *m = (const FacetsData *)p->data;
+      const double      hf = 2.2 / ks[kk]; /* about a facet's size */
+      int               same = 1, brute = 1, nq = 0, nbrute = 0;
+      for (int node = 0; node < 60; node++) {
+        double       y[3], dir[3], l;
+        const double th = uni(0, PI), ph = uni(0, 2 * PI), band = node % 3 == 0 ? 1e-4 : (node % 3 == 1 ? 1e-2 : 0.05);
+        Projection   prev;
+        int          has = 0;
+        const double maxdist = node % 2 ? PETSC_INFINITY : 0.03;
+        dir[0] = sin(th) * cos(ph);
+        dir[1] = sin(th) * sin(ph);
+        dir[2] = cos(th);
+        for (int step = 0; step < 25; step++) {
+          const double r = 1.0 + uni(-band, band), st = hf * (step % 5 == 4 ? 3.0 : 0.1);
+          for (int i = 0; i < 3; i++) dir[i] += st * uni(-1, 1);
+          l = nrm(dir);
+          for (int i = 0; i < 3; i++) y[i] = r * dir[i] / l + sh[i];
+          Projection pr, ph_;
+          const int  r0 = ToolProject(&T[0], sh, y, maxdist, &pr), r1 = ToolProjectHint(&T[0], sh, y, maxdist, has ? &prev : NULL, &ph_);
+          nq++;
+          if (r0 != r1 || (!r0 && (ph_.patch != pr.patch || ph_.xi != pr.xi || ph_.eta != pr.eta || ph_.gap != pr.gap || ph_.n[0] != pr.n[0] || ph_.n[1] != pr.n[1] || ph_.n[2] != pr.n[2]))) same = 0;
+          if (!smooth && !r0 && kk == 0) {
+            double yr[3], d2b, u, v;
+            for (int i = 0; i < 3; i++) yr[i] = y[i] - sh[i];
+            nbrute++;
+            if (FacetsBruteClosest(p, yr, &d2b) != FacetsOfParameters(p, ph_.xi, ph_.eta, &u, &v)) brute = 0;
+          }
+          if (!r1) {
+            prev = ph_;
+            has  = 1;
+          }
+        }
+      }
+      TU_CHECK(same, "facets sphere (%d triangles, %s): ToolProjectHint on %d queries along 60 node paths (hint: the node's previous result) gives ToolProject's result bit for bit", m->nf, smooth ? "smoothed" : "raw", nq);
+      if (!smooth && kk == 0) TU_CHECK(brute && nbrute > 100, "facets sphere (%d triangles, raw): the hinted facet is the brute-force closest on %d points", m->nf, nbrute);
+      ToolsDestroy(n, &T);
+    }
+  }
+  remove(path);
+}
+
 static void test_facets_sphere(void)
 {
   PetscInt       n;
@@ -1643,6 +1706,7 @@ int main(int argc, char **argv)
   test_facets_readers();
   test_facets_errors();
   test_facets_sphere();
+  test_facets_hint_large();
   PetscCall(PetscOptionsClear(NULL));
 
   /* timing */

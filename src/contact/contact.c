@@ -82,9 +82,11 @@ struct _p_Contact {
 };
 
 /* The tool whose closest point to y has the smallest gap (bounding boxes first). Returns the tool
-   index or -1 when no tool is within the search distance. */
-static PetscInt Pair(const struct _p_Contact *pb, const double y[3], PetscReal lambda, Projection *best)
+   index or -1 when no tool is within the search distance. cs: the node's committed state (NULL:
+   none), whose pairing is the hint of its tool's projection (the same result, found faster). */
+static PetscInt Pair(const struct _p_Contact *pb, const double y[3], PetscReal lambda, const ContactState *cs, Projection *best)
 {
+  const Projection hint = {.patch = cs ? (int)cs->patch : -1, .xi = cs ? cs->xi : 0.0, .eta = cs ? cs->eta : 0.0};
   PetscInt tbest = -1;
   for (PetscInt t = 0; t < pb->ntools; t++) {
     const Tool *tl = &pb->tools[t];
@@ -97,7 +99,7 @@ static PetscInt Pair(const struct _p_Contact *pb, const double y[3], PetscReal l
       d2 += e * e;
     }
     if (d2 > pb->search * pb->search) continue;
-    if (ToolProject(tl, sh, y, pb->search, &pr)) continue;
+    if (ToolProjectHint(tl, sh, y, pb->search, cs && cs->tool == t ? &hint : NULL, &pr)) continue; /* the node's committed pairing as the hint */
     if (tbest < 0 || pr.gap < best->gap) {
       *best = pr;
       tbest = t;
@@ -114,7 +116,7 @@ static PetscInt PairNode(const struct _p_Contact *pb, PetscInt i, const double y
     if (m->tool >= 0) *pr = m->pr;
     return m->tool;
   }
-  m->tool = Pair(pb, y, lambda, &m->pr);
+  m->tool = Pair(pb, y, lambda, &pb->cst_c[i], &m->pr);
   for (int k = 0; k < 3; k++) m->y[k] = y[k];
   m->lambda = lambda;
   if (m->tool >= 0) *pr = m->pr;

@@ -268,6 +268,252 @@ static void TreeClosestCollect(const FacetsData *m, const double y[3], Best *b, 
 
 static void TreeClosest(const FacetsData *m, const double y[3], Best *b) { TreeClosestCollect(m, y, b, NULL, NULL); }
 
+
+/* ------------------------------------------------------------------ bucket grid */
+
+/* A uniform grid in the tool's reference frame, cells of about a facet's size, hashed: each
+   non-empty cell lists the facets whose bounding box meets it. Every point of a facet lies in a
+   cell that lists it, so the cells that meet the cube [y - r, y + r] hold every facet within r of
+   y: a warm start's bound r (the distance to a facet near the hint) is proved the smallest by
+   those few cells, whatever the tool's size. */
+
+#define GRID_BITS 21
+#ifndef GRID_MAXCELLS
+#define GRID_MAXCELLS 27
+#endif
+
+static inline long GridIndex(const FacetsData *m, int i, double x) { return (long)floor((x - m->go[i]) / m->gh); }
+
+static inline long long GridKey(long ix, long iy, long iz) { return ((long long)ix << (2 * GRID_BITS)) | ((long long)iy << GRID_BITS) | (long long)iz; }
+
+static inline unsigned GridSlot(long long key, int cap)
+{ /* blocks of 4 x 4 x 4 cells on 64 consecutive slots (neighbouring cells share cache lines), the
+     blocks scattered by splitmix64's finaliser */
+  const long long    M = (1LL << GRID_BITS) - 1;
+  const long long    ix = (key >> (2 * GRID_BITS)) & M, iy = (key >> GRID_BITS) & M, iz = key & M;
+  unsigned long long z  = (unsigned long long)GridKey(ix >> 2, iy >> 2, iz >> 2);
+  z                     = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z                     = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return (unsigned)((z << 6) | (unsigned long long)(((ix & 3) << 4) | ((iy & 3) << 2) | (iz & 3))) & (unsigned)(cap - 1);
+}
+
+static const FacetsCell *GridFind(const FacetsData *m, long long key)
+{
+  for (unsigned s = GridSlot(key, m->gcap);; s = (s + 1) & (unsigned)(m->gcap - 1)) {
+    const FacetsCell *c = &m->gcell[s];
+    if (c->key == key) return c;
+    if (c->key < 0) return NULL;
+  }
+}
+
+static FacetsCell *GridInsert(FacetsCell *cell, int cap, long long key)
+{
+  for (unsigned s = GridSlot(key, cap);; s = (s + 1) & (unsigned)(cap - 1)) {
+    if (cell[s].key == key) return &cell[s];
+    if (cell[s].key < 0) {
+      cell[s].key   = key;
+      cell[s].count = 0;
+      return &cell[s];
+    }
+  }
+}
+
+static void FacetBoxCells(const FacetsData *m, int f, long lo[3], long hi[3])
+{
+  for (int i = 0; i < 3; i++) {
+    double a = HUGE_VAL, b = -HUGE_VAL;
+    for (int k = 0; k < 3; k++) {
+      a = fmin(a, m->V[3 * m->F[3 * f + k] + i]);
+      b = fmax(b, m->V[3 * m->F[3 * f + k] + i]);
+    }
+    lo[i] = GridIndex(m, i, a);
+    hi[i] = GridIndex(m, i, b);
+  }
+}
+
+PetscErrorCode FacetsGridBuild(FacetsData *m)
+{
+  double bl[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, bh[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, ext = 0.0, h = 0.0;
+  int    ncell = 0;
+
+  PetscFunctionBeginUser;
+  m->gcap   = 0;
+  m->nglist = 0;
+  m->gcell  = NULL;
+  m->glist  = NULL;
+  if (m->nf <= 0) PetscFunctionReturn(0);
+  for (int k = 0; k < m->nv; k++)
+    for (int i = 0; i < 3; i++) {
+      bl[i] = fmin(bl[i], m->V[3 * k + i]);
+      bh[i] = fmax(bh[i], m->V[3 * k + i]);
+    }
+  for (int i = 0; i < 3; i++) ext = fmax(ext, bh[i] - bl[i]);
+  for (int f = 0; f < m->nf; f++) { /* cell size: the mean of the facets' largest box extents */
+    double e = 0.0;
+    for (int i = 0; i < 3; i++) {
+      double a = HUGE_VAL, b = -HUGE_VAL;
+      for (int k = 0; k < 3; k++) {
+        a = fmin(a, m->V[3 * m->F[3 * f + k] + i]);
+        b = fmax(b, m->V[3 * m->F[3 * f + k] + i]);
+      }
+      e = fmax(e, b - a);
+    }
+    h += e / m->nf;
+  }
+  h = fmax(h, ext / (double)((1L << GRID_BITS) - 8));
+  if (!(h > 0.0) || !isfinite(h)) PetscFunctionReturn(0);
+  m->gh = h;
+  for (int i = 0; i < 3; i++) m->go[i] = bl[i] - 2.0 * h;
+  {
+    long long total = 0;
+    int       cap   = 64;
+    for (int f = 0; f < m->nf; f++) {
+      long lo[3], hi[3];
+      FacetBoxCells(m, f, lo, hi);
+      total += (long long)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+    }
+    if (total > INT_MAX / 2) PetscFunctionReturn(0); /* no grid: the hierarchy alone */
+    while (cap < 2 * m->nf) cap *= 2;
+    PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
+    for (int s = 0; s < cap; s++) m->gcell[s].key = -1;
+    for (int pass = 0; pass < 2; pass++) { /* counts, then the lists */
+      if (pass == 1) { /* the lists' starts in the order the facets first meet the cells (the
+                          hierarchy's order: neighbouring cells' lists are near), then the lists */
+        int start = 0;
+        PetscCall(PetscMalloc1((size_t)total, &m->glist));
+        for (int s = 0; s < cap; s++) m->gcell[s].start = -1;
+        for (int f = 0; f < m->nf; f++) {
+          long lo[3], hi[3];
+          FacetBoxCells(m, f, lo, hi);
+          for (long ix = lo[0]; ix <= hi[0]; ix++)
+            for (long iy = lo[1]; iy <= hi[1]; iy++)
+              for (long iz = lo[2]; iz <= hi[2]; iz++) {
+                FacetsCell *c = GridInsert(m->gcell, cap, GridKey(ix, iy, iz));
+                if (c->start < 0) {
+                  c->start = start;
+                  start += c->count;
+                  c->count = 0;
+                }
+              }
+        }
+        m->nglist = start;
+      }
+      for (int f = 0; f < m->nf; f++) {
+        long lo[3], hi[3];
+        FacetBoxCells(m, f, lo, hi);
+        for (long ix = lo[0]; ix <= hi[0]; ix++)
+          for (long iy = lo[1]; iy <= hi[1]; iy++)
+            for (long iz = lo[2]; iz <= hi[2]; iz++) {
+              FacetsCell *c = GridInsert(m->gcell, cap, GridKey(ix, iy, iz));
+              if (pass == 1) m->glist[c->start + c->count] = f;
+              else if (c->count == 0) ncell++;
+              c->count++;
+              if (pass == 0 && 2 * ncell > cap) { /* grow: rehash at twice the size */
+                FacetsCell *old = m->gcell;
+                const int   oc  = cap;
+                cap *= 2;
+                PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
+                for (int s = 0; s < cap; s++) m->gcell[s].key = -1;
+                for (int s = 0; s < oc; s++)
+                  if (old[s].key >= 0) *GridInsert(m->gcell, cap, old[s].key) = old[s];
+                PetscCall(PetscFree(old));
+              }
+            }
+      }
+    }
+    m->gcap = cap;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* a facet whose distance is known (the walk's and the grid's evaluations; listed: in the list of
+   candidates) */
+typedef struct {
+  int    f, listed;
+  double d2;
+} Seen;
+
+#define SEEN_MAX 64
+
+/* The closest facet as TreeClosestCollect from b (a facet's distance: the warm start's bound),
+   searching only the grid's cells within that bound; seen: the facets already evaluated (each
+   facet is evaluated once, though it is listed in several cells). Returns 1 (b, list untouched or
+   to be redone) when the bound spans more than GRID_MAXCELLS cells or the list would overflow: the
+   hierarchy's turn */
+static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, Best *list, int *nl, Seen *seen, int *ns)
+{
+  double R2 = b->d2;
+  long   lo[3], hi[3];
+  if (!m->gcap || !(b->d2 < HUGE_VAL)) return 1;
+  if (list) {
+    *nl = 0;
+    R2  = (sqrt(b->d2) + 2.0 * m->dev) * (sqrt(b->d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+  }
+  {
+    const double r = sqrt(R2) * (1.0 + 1e-9) + 1e-12 * m->L; /* outwards of the rounding of y -+ r */
+    long         n = 1;
+    for (int i = 0; i < 3; i++) {
+      lo[i] = GridIndex(m, i, y[i] - r);
+      hi[i] = GridIndex(m, i, y[i] + r);
+      if (lo[i] < 0) lo[i] = 0;
+      if (hi[i] > (1L << GRID_BITS) - 1) hi[i] = (1L << GRID_BITS) - 1;
+      if (hi[i] < lo[i]) return 0; /* no cell of the tool within r: none closer than b */
+      n *= hi[i] - lo[i] + 1;
+    }
+    if (n > GRID_MAXCELLS) return 1;
+  }
+  for (long ix = lo[0]; ix <= hi[0]; ix++)
+    for (long iy = lo[1]; iy <= hi[1]; iy++)
+      for (long iz = lo[2]; iz <= hi[2]; iz++) {
+        const long idx[3] = {ix, iy, iz};
+        double     bd = 0.0;
+        for (int i = 0; i < 3; i++) { /* the cell's distance from y (rounded down) */
+          const double a = m->go[i] + idx[i] * m->gh, o = fmax(a - y[i], y[i] - (a + m->gh));
+          if (o > 0.0) bd += o * o;
+        }
+        if (bd * (1.0 - 1e-9) > R2) continue;
+        const FacetsCell *c = GridFind(m, GridKey(ix, iy, iz));
+        if (!c) continue;
+        for (int j = c->start; j < c->start + c->count; j++) {
+          const int k = m->glist[j];
+          int       q = 0;
+          double    d2;
+          while (q < *ns && seen[q].f != k) q++;
+          if (q < *ns) {
+            if (!list || seen[q].listed) continue;
+            d2 = seen[q].d2;
+          } else {
+            double u, v;
+            int    reg;
+            d2 = TriClosest(m, k, y, &u, &v, &reg);
+            if (*ns < SEEN_MAX) {
+              seen[*ns].f      = k;
+              seen[*ns].listed = 0;
+              seen[(*ns)++].d2 = d2;
+            } else q = -1; /* not recorded */
+          }
+          if (Better(d2, k, b)) {
+            b->d2 = d2;
+            b->f  = k;
+            if (list) R2 = (sqrt(d2) + 2.0 * m->dev) * (sqrt(d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+            else R2 = d2;
+          }
+          if (list && d2 <= R2) {
+            if (q < 0) { /* not recorded: listed already? */
+              int dup = 0;
+              for (int t = 0; t < *nl && !dup; t++) dup = list[t].f == k;
+              if (dup) continue;
+            } else seen[q].listed = 1;
+            if (*nl == 256) return 1;
+            list[*nl].d2    = d2;
+            list[(*nl)++].f = k;
+          }
+        }
+      }
+  return 0;
+}
+
 /* ------------------------------------------------------------------ projection */
 
 /* Newton on |x(u, v) - y|^2 / 2 over facet f's (extended) patch from (u, v); returns 0 when it
@@ -464,20 +710,30 @@ static int FacetsClosest(const Patch *p, const double y[3], double maxdist, doub
   return FacetsFinish(p, m, y, L, &b, list, &nl, c);
 }
 
-/* The same result as FacetsClosest; the hint's facet and a greedy walk over its neighbours give
-   the hierarchy a small bound to start with */
+/* The same result as FacetsClosest: the hint's facet and a greedy walk over its neighbours give a
+   bound, the grid's cells within that bound prove (or improve) it; where the bound spans more
+   cells, the hierarchy from its root with that bound (a walk that ends beyond maxdist: maxdist) */
 static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, double L, double hxi, double heta, PatchCandidate *c)
 {
   const FacetsData *m = (const FacetsData *)p->data;
   double            u, v;
-  int               reg, f = FacetsDecode(m, hxi, heta, &u, &v);
-  Best              b = {TriClosest(m, f, y, &u, &v, &reg), f};
-  for (int step = 0; step < 16; step++) {
+  int               reg, f = FacetsDecode(m, hxi, heta, &u, &v), nl = 0, ns = 1;
+  Best              b = {TriClosest(m, f, y, &u, &v, &reg), f}, list[256];
+  Seen              seen[SEEN_MAX] = {{f, 0, b.d2}};
+  for (int step = 0; step < 64; step++) {
     int moved = 0;
     for (int e = 0; e < 3; e++) {
       const int nb = m->adj[3 * b.f + e];
+      int       q  = 0;
       if (nb < 0) continue;
+      while (q < ns && seen[q].f != nb) q++;
+      if (q < ns) continue; /* evaluated already, not better */
       const double d2 = TriClosest(m, nb, y, &u, &v, &reg);
+      if (ns < SEEN_MAX) {
+        seen[ns].f        = nb;
+        seen[ns].listed   = 0;
+        seen[ns++].d2     = d2;
+      }
       if (Better(d2, nb, &b)) {
         b.d2  = d2;
         b.f   = nb;
@@ -490,13 +746,9 @@ static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, 
     b.d2 = maxdist * maxdist;
     b.f  = INT_MAX;
   }
-  {
-    Best list[256];
-    int  nl = 0;
-    TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
-    if (b.f == INT_MAX) return 1;
-    return FacetsFinish(p, m, y, L, &b, list, &nl, c);
-  }
+  if (GridClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl, seen, &ns)) TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
+  if (b.f == INT_MAX) return 1;
+  return FacetsFinish(p, m, y, L, &b, list, &nl, c);
 }
 
 /* dn/dy: raw facets 0 (the facet's normal). Smoothed, at a projection inside the facet: from the
@@ -593,6 +845,8 @@ static PetscErrorCode FacetsDestroy(Patch *p)
   PetscCall(PetscFree(m->vbnd));
   PetscCall(PetscFree(m->curved));
   PetscCall(PetscFree(m->node));
+  PetscCall(PetscFree(m->gcell));
+  PetscCall(PetscFree(m->glist));
   PetscCall(PetscFree(m));
   p->data = NULL;
   PetscFunctionReturn(0);
@@ -600,7 +854,7 @@ static PetscErrorCode FacetsDestroy(Patch *p)
 
 size_t FacetsBytes(const FacetsData *m)
 {
-  return sizeof(*m) + (size_t)m->nv * (3 * sizeof(double) + 1) + (size_t)m->nf * (9 * sizeof(int) + 1) + (size_t)m->nn * 3 * sizeof(double) + (size_t)m->nnode * sizeof(FacetsNode);
+  return sizeof(*m) + (size_t)m->nv * (3 * sizeof(double) + 1) + (size_t)m->nf * (9 * sizeof(int) + 1) + (size_t)m->nn * 3 * sizeof(double) + (size_t)m->nnode * sizeof(FacetsNode) + (size_t)m->gcap * sizeof(FacetsCell) + (size_t)m->nglist * sizeof(int);
 }
 
 int FacetsBruteClosest(const Patch *p, const double y[3], double *d2)

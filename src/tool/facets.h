@@ -10,6 +10,12 @@ typedef struct {
   int   first, count;
 } FacetsNode;
 
+/* a cell of the bucket grid: its key (the packed cell indices) and its facets glist[start .. start+count-1] */
+typedef struct {
+  long long key;
+  int       start, count;
+} FacetsCell;
+
 typedef struct {
   char           file[PETSC_MAX_PATH_LEN];
   int            nv, nf, nn, nnode, nopen;
@@ -23,6 +29,10 @@ typedef struct {
                             angle): curved by the smoothing                                        */
   FacetsNode    *node;  /* nnode                                                                    */
   double         L;     /* the surface's size (bounding-box diagonal)                               */
+  double         go[3], gh; /* bucket grid (warm start): origin and cell size (about a facet's size)   */
+  int            gcap, nglist; /* its hash table's slots (a power of 2) and entries                  */
+  FacetsCell    *gcell; /* gcap slots (count 0: empty)                                              */
+  int           *glist; /* nglist: the facets whose bounding box meets each cell                     */
   double         dev;   /* the largest distance of a smoothed facet from its plane triangle          */
   int            smooth;
   double         feature_deg;
@@ -47,6 +57,8 @@ PetscErrorCode FacetsPatchFromOptions(PetscOptionItems *PetscOptionsObject, Patc
 /* the format of path: from `format` if set, else its extension; "" if unknown */
 void           FacetsFormat(const char path[], const char format[], char out[16]);
 size_t         FacetsBytes(const FacetsData *m);
+/* the bucket grid of the facets (after the facets and vertices are final) */
+PetscErrorCode FacetsGridBuild(FacetsData *m);
 /* the patch of facet f at its local (u, v): point, first and second derivatives */
 void FacetsEvalLocal(const FacetsData *m, int f, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv);
 /* for the tests: the closest facet by brute force and by the hierarchy (squared distance) */
