@@ -84,12 +84,12 @@ struct _p_Contact {
 /* The tool whose closest point to y has the smallest gap (bounding boxes first). Returns the tool
    index or -1 when no tool is within the search distance. cs: the node's committed state (NULL:
    none), whose pairing is the hint of its tool's projection (the same result, found faster). */
-static PetscInt Pair(const struct _p_Contact *pb, const double y[3], PetscReal lambda, const ContactState *cs, Projection *best)
+static PetscInt Pair(const struct _p_Contact *contact, const double y[3], PetscReal lambda, const ContactState *cs, Projection *best)
 {
   const Projection hint = {.patch = cs ? (int)cs->patch : -1, .xi = cs ? cs->xi : 0.0, .eta = cs ? cs->eta : 0.0};
   PetscInt tbest = -1;
-  for (PetscInt t = 0; t < pb->ntools; t++) {
-    const Tool *tl = &pb->tools[t];
+  for (PetscInt t = 0; t < contact->ntools; t++) {
+    const Tool *tl = &contact->tools[t];
     double      sh[3], d2 = 0;
     Projection  pr;
     ToolShift(tl, lambda, sh);
@@ -98,8 +98,8 @@ static PetscInt Pair(const struct _p_Contact *pb, const double y[3], PetscReal l
       const double e  = y[k] < lo ? lo - y[k] : (y[k] > hi ? y[k] - hi : 0);
       d2 += e * e;
     }
-    if (d2 > pb->search * pb->search) continue;
-    if (ToolProjectHint(tl, sh, y, pb->search, cs && cs->tool == t ? &hint : NULL, &pr)) continue; /* the node's committed pairing as the hint */
+    if (d2 > contact->search * contact->search) continue;
+    if (ToolProjectHint(tl, sh, y, contact->search, cs && cs->tool == t ? &hint : NULL, &pr)) continue; /* the node's committed pairing as the hint */
     if (tbest < 0 || pr.gap < best->gap) {
       *best = pr;
       tbest = t;
@@ -109,14 +109,14 @@ static PetscInt Pair(const struct _p_Contact *pb, const double y[3], PetscReal l
 }
 
 /* Pair for slave node i, through its memo (the same y and lambda give the same result) */
-static PetscInt PairNode(const struct _p_Contact *pb, PetscInt i, const double y[3], PetscReal lambda, Projection *pr)
+static PetscInt PairNode(const struct _p_Contact *contact, PetscInt i, const double y[3], PetscReal lambda, Projection *pr)
 {
-  PairMemo *m = &pb->pmemo[i];
+  PairMemo *m = &contact->pmemo[i];
   if (m->tool != -2 && m->lambda == lambda && m->y[0] == y[0] && m->y[1] == y[1] && m->y[2] == y[2]) {
     if (m->tool >= 0) *pr = m->pr;
     return m->tool;
   }
-  m->tool = Pair(pb, y, lambda, &pb->cst_c[i], &m->pr);
+  m->tool = Pair(contact, y, lambda, &contact->cst_c[i], &m->pr);
   for (int k = 0; k < 3; k++) m->y[k] = y[k];
   m->lambda = lambda;
   if (m->tool >= 0) *pr = m->pr;
@@ -124,19 +124,19 @@ static PetscInt PairNode(const struct _p_Contact *pb, PetscInt i, const double y
 }
 
 /* chord of eq 28: from the projection to the point at (xi + 0.01, eta) of the same patch */
-static void Chord(const struct _p_Contact *pb, PetscInt tool, const Projection *pr, double chord[3])
+static void Chord(const struct _p_Contact *contact, PetscInt tool, const Projection *pr, double chord[3])
 {
-  const Patch *p = &pb->tools[tool].patch[pr->patch];
+  const Patch *p = &contact->tools[tool].patch[pr->patch];
   double       x0[3], x1[3], xu[3], xv[3];
   PatchEval(p, pr->xi, pr->eta, x0, xu, xv, NULL, NULL, NULL);
   PatchEval(p, pr->xi + 0.01, pr->eta, x1, xu, xv, NULL, NULL, NULL);
   for (int k = 0; k < 3; k++) chord[k] = x1[k] - x0[k];
 }
 
-static void NodePosition(const struct _p_Contact *pb, PetscInt i, const PetscScalar *u, double y[3])
+static void NodePosition(const struct _p_Contact *contact, PetscInt i, const PetscScalar *u, double y[3])
 {
-  const PetscInt v = pb->slave[i];
-  for (int k = 0; k < 3; k++) y[k] = pb->mesh->X[3 * v + k] + PetscRealPart(u[pb->mesh->vloff[v] + k]);
+  const PetscInt v = contact->slave[i];
+  for (int k = 0; k < 3; k++) y[k] = contact->mesh->X[3 * v + k] + PetscRealPart(u[contact->mesh->vloff[v] + k]);
 }
 
 PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c)
@@ -285,9 +285,9 @@ static double HexVolume(const double x[8][3])
    node's share of the volume of the elements around it (an eighth of each; summed over the ranks
    through the unconstrained twin DM, so rank-independent), A_i its tributary area (for a regular
    mesh, the thickness of the element layer under the face). h[i] = 0 where A_i = 0. */
-static PetscErrorCode ElementSizes(Contact pb, PetscReal *h)
+static PetscErrorCode ElementSizes(Contact contact, PetscReal *h)
 {
-  const Mesh        *m = pb->mesh;
+  const Mesh        *m = contact->mesh;
   Vec                Vl, Vg;
   PetscScalar       *vl;
   const PetscScalar *vr;
@@ -309,8 +309,8 @@ static PetscErrorCode ElementSizes(Contact pb, PetscReal *h)
   PetscCall(DMLocalToGlobal(m->dmr, Vl, ADD_VALUES, Vg));
   PetscCall(DMGlobalToLocal(m->dmr, Vg, INSERT_VALUES, Vl));
   PetscCall(VecGetArrayRead(Vl, &vr));
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    const PetscInt  v = pb->slave[i];
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const PetscInt  v = contact->slave[i];
     const PetscReal A = m->varea ? m->varea[v] : 0;
     h[i]              = A > 0 ? 2 * PetscRealPart(vr[m->vloff[v]]) / A : 0;
   }
@@ -321,211 +321,211 @@ static PetscErrorCode ElementSizes(Contact pb, PetscReal *h)
 }
 
 /* the law of slave node i: its own penalties (automatic), or the given ones (times its area) */
-static inline ContactLaw NodeLaw(const struct _p_Contact *pb, PetscInt i)
+static inline ContactLaw NodeLaw(const struct _p_Contact *contact, PetscInt i)
 {
-  ContactLaw law = pb->law;
-  if (pb->kn) {
-    law.KN = pb->kn[i];
-    law.KT = pb->kt[i];
-  } else if (pb->per_area) { /* penalties per unit area times the node's tributary area */
-    law.KN *= pb->mesh->varea[pb->slave[i]];
-    law.KT *= pb->mesh->varea[pb->slave[i]];
+  ContactLaw law = contact->law;
+  if (contact->kn) {
+    law.KN = contact->kn[i];
+    law.KT = contact->kt[i];
+  } else if (contact->per_area) { /* penalties per unit area times the node's tributary area */
+    law.KN *= contact->mesh->varea[contact->slave[i]];
+    law.KT *= contact->mesh->varea[contact->slave[i]];
   }
   return law;
 }
 
-PetscErrorCode ContactSetUp(Contact pb, const Mesh *m)
+PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
 {
   PetscBool *mark, found;
 
   PetscFunctionBeginUser;
-  pb->mesh = m;
-  if (pb->symmetry == 0) pb->symmetry = (m->opt.source == MESH_BLANK && m->opt.blank_quarter) ? 4 : 1;
-  pb->ns = 0;
-  if (!pb->ntools) PetscFunctionReturn(0);
-  pb->search = pb->search_opt;
-  if (pb->search <= 0) { /* default: 5 % of the largest tool's box diagonal */
-    for (PetscInt t = 0; t < pb->ntools; t++) {
-      const double *b = pb->tools[t].bbox;
-      pb->search      = PetscMax(pb->search, 0.05 * PetscSqrtReal(PetscSqr(b[1] - b[0]) + PetscSqr(b[3] - b[2]) + PetscSqr(b[5] - b[4])));
+  contact->mesh = m;
+  if (contact->symmetry == 0) contact->symmetry = (m->opt.source == MESH_BLANK && m->opt.blank_quarter) ? 4 : 1;
+  contact->ns = 0;
+  if (!contact->ntools) PetscFunctionReturn(0);
+  contact->search = contact->search_opt;
+  if (contact->search <= 0) { /* default: 5 % of the largest tool's box diagonal */
+    for (PetscInt t = 0; t < contact->ntools; t++) {
+      const double *b = contact->tools[t].bbox;
+      contact->search      = PetscMax(contact->search, 0.05 * PetscSqrtReal(PetscSqr(b[1] - b[0]) + PetscSqr(b[3] - b[2]) + PetscSqr(b[5] - b[4])));
     }
   }
 
   PetscCall(PetscCalloc1(m->nv, &mark));
-  for (PetscInt s = 0; s < pb->nset; s++) {
-    PetscCall(MeshMarkSetVertices(m, pb->set[s], mark, &found));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, pb->comm));
-    PetscCheck(found, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set: the mesh has no set named '%s'", pb->set[s]);
+  for (PetscInt s = 0; s < contact->nset; s++) {
+    PetscCall(MeshMarkSetVertices(m, contact->set[s], mark, &found));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, contact->comm));
+    PetscCheck(found, contact->comm, PETSC_ERR_USER_INPUT, "-contact_set: the mesh has no set named '%s'", contact->set[s]);
   }
   for (PetscInt v = 0; v < m->nv; v++)
-    if (mark[v] && m->vowned[v]) pb->ns++;
-  PetscCall(PetscMalloc4(pb->ns, &pb->slave, 3 * pb->ns, &pb->sgdof, 3 * pb->ns, &pb->seed, pb->ns, &pb->has_seed));
-  PetscCall(PetscCalloc2(pb->ns, &pb->active_prev, pb->ns, &pb->tN_prev));
-  PetscCall(PetscMalloc1(pb->ns, &pb->pmemo));
-  PetscCall(PetscCalloc2(pb->ns, &pb->cst_c, pb->ns, &pb->cst_t));
-  PetscCall(PetscCalloc3(3 * pb->ns, &pb->lam, pb->ns, &pb->lam_tool, 3 * pb->ns, &pb->lam_r));
-  pb->ns = 0;
+    if (mark[v] && m->vowned[v]) contact->ns++;
+  PetscCall(PetscMalloc4(contact->ns, &contact->slave, 3 * contact->ns, &contact->sgdof, 3 * contact->ns, &contact->seed, contact->ns, &contact->has_seed));
+  PetscCall(PetscCalloc2(contact->ns, &contact->active_prev, contact->ns, &contact->tN_prev));
+  PetscCall(PetscMalloc1(contact->ns, &contact->pmemo));
+  PetscCall(PetscCalloc2(contact->ns, &contact->cst_c, contact->ns, &contact->cst_t));
+  PetscCall(PetscCalloc3(3 * contact->ns, &contact->lam, contact->ns, &contact->lam_tool, 3 * contact->ns, &contact->lam_r));
+  contact->ns = 0;
   for (PetscInt v = 0; v < m->nv; v++) {
     if (!(mark[v] && m->vowned[v])) continue;
-    const PetscInt i = pb->ns++;
-    pb->slave[i]     = v;
-    PetscCall(MeshVertexDofs(m, v, pb->sgdof + 3 * i));
-    pb->has_seed[i] = PETSC_FALSE;
-    for (int k = 0; k < 3; k++) pb->cst_c[i].y[k] = m->X[3 * v + k];
-    pb->cst_c[i].tool = pb->cst_c[i].patch = -1;
-    pb->cst_c[i].gap                       = PETSC_INFINITY;
-    pb->cst_t[i]                           = pb->cst_c[i];
-    pb->pmemo[i].tool                      = -2;
-    pb->lam_tool[i]                        = -1;
+    const PetscInt i = contact->ns++;
+    contact->slave[i]     = v;
+    PetscCall(MeshVertexDofs(m, v, contact->sgdof + 3 * i));
+    contact->has_seed[i] = PETSC_FALSE;
+    for (int k = 0; k < 3; k++) contact->cst_c[i].y[k] = m->X[3 * v + k];
+    contact->cst_c[i].tool = contact->cst_c[i].patch = -1;
+    contact->cst_c[i].gap                       = PETSC_INFINITY;
+    contact->cst_t[i]                           = contact->cst_c[i];
+    contact->pmemo[i].tool                      = -2;
+    contact->lam_tool[i]                        = -1;
   }
   PetscCall(PetscFree(mark));
-  if (pb->kauto || pb->aug) { /* element sizes: the automatic penalty, the relative tolerance */
+  if (contact->kauto || contact->aug) { /* element sizes: the automatic penalty, the relative tolerance */
     PetscReal *h, hmin = PETSC_MAX_REAL;
     PetscInt   nzero = 0;
-    PetscCheck(m->varea, pb->comm, PETSC_ERR_PLIB, "contact: the mesh carries no tributary areas");
-    PetscCall(PetscMalloc1(pb->ns + 1, &h));
-    PetscCall(ElementSizes(pb, h));
-    for (PetscInt i = 0; i < pb->ns; i++) {
+    PetscCheck(m->varea, contact->comm, PETSC_ERR_PLIB, "contact: the mesh carries no tributary areas");
+    PetscCall(PetscMalloc1(contact->ns + 1, &h));
+    PetscCall(ElementSizes(contact, h));
+    for (PetscInt i = 0; i < contact->ns; i++) {
       if (h[i] > 0) hmin = PetscMin(hmin, h[i]);
       else nzero++;
     }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hmin, 1, MPIU_REAL, MPI_MIN, pb->comm));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nzero, 1, MPIU_INT, MPI_SUM, pb->comm));
-    pb->hmin = hmin < PETSC_MAX_REAL ? hmin : 0;
-    if (pb->kauto) {
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hmin, 1, MPIU_REAL, MPI_MIN, contact->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nzero, 1, MPIU_INT, MPI_SUM, contact->comm));
+    contact->hmin = hmin < PETSC_MAX_REAL ? hmin : 0;
+    if (contact->kauto) {
       PetscReal E, kmin = PETSC_MAX_REAL, kmax = 0;
-      PetscCheck(!nzero, pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, pb->set[0], pb->nset > 1 ? ", ..." : "");
+      PetscCheck(!nzero, contact->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, contact->set[0], contact->nset > 1 ? ", ..." : "");
       /* the body's Young's modulus, from its material (ContactSetYoungModulus) */
-      E = pb->E_body;
-      PetscCheck(E > 0 && PetscIsNormalReal(E), pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto needs the body's Young's modulus, which its material does not give (a user material: give -contact_penalty_normal a value)");
-      PetscCall(PetscMalloc2(pb->ns, &pb->kn, pb->ns, &pb->kt));
-      for (PetscInt i = 0; i < pb->ns; i++) {
-        pb->kn[i] = pb->kfactor * E * m->varea[pb->slave[i]] / h[i];
-        pb->kt[i] = pb->ktauto ? pb->kratio * pb->kn[i] : pb->law.KT;
-        kmin      = PetscMin(kmin, pb->kn[i]);
-        kmax      = PetscMax(kmax, pb->kn[i]);
+      E = contact->E_body;
+      PetscCheck(E > 0 && PetscIsNormalReal(E), contact->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto needs the body's Young's modulus, which its material does not give (a user material: give -contact_penalty_normal a value)");
+      PetscCall(PetscMalloc2(contact->ns, &contact->kn, contact->ns, &contact->kt));
+      for (PetscInt i = 0; i < contact->ns; i++) {
+        contact->kn[i] = contact->kfactor * E * m->varea[contact->slave[i]] / h[i];
+        contact->kt[i] = contact->ktauto ? contact->kratio * contact->kn[i] : contact->law.KT;
+        kmin      = PetscMin(kmin, contact->kn[i]);
+        kmax      = PetscMax(kmax, contact->kn[i]);
       }
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmin, 1, MPIU_REAL, MPI_MIN, pb->comm));
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmax, 1, MPIU_REAL, MPI_MAX, pb->comm));
-      PetscCall(PetscPrintf(pb->comm, "contact: automatic penalty K_N = %g x E %g x A / h per node: smallest %g, largest %g; K_T %s; smallest element size normal to the contact faces %g\n", (double)pb->kfactor, (double)E, (double)kmin, (double)kmax, pb->ktauto ? "= -contact_penalty_ratio x K_N" : "as given", (double)pb->hmin));
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmin, 1, MPIU_REAL, MPI_MIN, contact->comm));
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmax, 1, MPIU_REAL, MPI_MAX, contact->comm));
+      PetscCall(PetscPrintf(contact->comm, "contact: automatic penalty K_N = %g x E %g x A / h per node: smallest %g, largest %g; K_T %s; smallest element size normal to the contact faces %g\n", (double)contact->kfactor, (double)E, (double)kmin, (double)kmax, contact->ktauto ? "= -contact_penalty_ratio x K_N" : "as given", (double)contact->hmin));
     }
     PetscCall(PetscFree(h));
   }
-  if (pb->aug) {
-    pb->tol = pb->aug_tol > 0 ? pb->aug_tol : PETSC_MAX_REAL;
-    if (pb->aug_tol_rel > 0) {
-      PetscCheck(pb->hmin > 0, pb->comm, PETSC_ERR_USER_INPUT, "-contact_augmented_tol_relative: no slave node lies on a boundary face of -contact_set, so there is no element size; give -contact_augmented_tol");
-      pb->tol = PetscMin(pb->tol, pb->aug_tol_rel * pb->hmin);
+  if (contact->aug) {
+    contact->tol = contact->aug_tol > 0 ? contact->aug_tol : PETSC_MAX_REAL;
+    if (contact->aug_tol_rel > 0) {
+      PetscCheck(contact->hmin > 0, contact->comm, PETSC_ERR_USER_INPUT, "-contact_augmented_tol_relative: no slave node lies on a boundary face of -contact_set, so there is no element size; give -contact_augmented_tol");
+      contact->tol = PetscMin(contact->tol, contact->aug_tol_rel * contact->hmin);
     }
-    PetscCall(PetscPrintf(pb->comm, "contact: augmented Lagrangian, penetration tolerance %g (smallest element size normal to the contact faces %g), multiplier change tolerance %g, at most %" PetscInt_FMT " Newton solves per step\n", (double)pb->tol, (double)pb->hmin, (double)pb->aug_mtol, pb->aug_max));
+    PetscCall(PetscPrintf(contact->comm, "contact: augmented Lagrangian, penetration tolerance %g (smallest element size normal to the contact faces %g), multiplier change tolerance %g, at most %" PetscInt_FMT " Newton solves per step\n", (double)contact->tol, (double)contact->hmin, (double)contact->aug_mtol, contact->aug_max));
   }
-  if (pb->per_area) { /* the tributary areas come with the mesh (MeshSetAreaSets) */
+  if (contact->per_area) { /* the tributary areas come with the mesh (MeshSetAreaSets) */
     PetscReal amin = PETSC_MAX_REAL, amax = 0, asum = 0;
     PetscInt  nzero = 0;
-    PetscCheck(m->varea, pb->comm, PETSC_ERR_PLIB, "-contact_penalty_per_area: the mesh carries no tributary areas");
-    for (PetscInt i = 0; i < pb->ns; i++) {
-      const PetscReal A = m->varea[pb->slave[i]];
+    PetscCheck(m->varea, contact->comm, PETSC_ERR_PLIB, "-contact_penalty_per_area: the mesh carries no tributary areas");
+    for (PetscInt i = 0; i < contact->ns; i++) {
+      const PetscReal A = m->varea[contact->slave[i]];
       if (!(A > 0)) nzero++;
       amin = PetscMin(amin, A);
       amax = PetscMax(amax, A);
       asum += A;
     }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nzero, 1, MPIU_INT, MPI_SUM, pb->comm));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &amin, 1, MPIU_REAL, MPI_MIN, pb->comm));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &amax, 1, MPIU_REAL, MPI_MAX, pb->comm));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &asum, 1, MPIU_REAL, MPI_SUM, pb->comm));
-    PetscCheck(!nzero, pb->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, pb->set[0], pb->nset > 1 ? ", ..." : "");
-    PetscCall(PetscPrintf(pb->comm, "contact: penalties per unit area; tributary areas of the slave nodes: total %.10g, smallest %g, largest %g\n", (double)asum, (double)amin, (double)amax));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nzero, 1, MPIU_INT, MPI_SUM, contact->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &amin, 1, MPIU_REAL, MPI_MIN, contact->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &amax, 1, MPIU_REAL, MPI_MAX, contact->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &asum, 1, MPIU_REAL, MPI_SUM, contact->comm));
+    PetscCheck(!nzero, contact->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, contact->set[0], contact->nset > 1 ? ", ..." : "");
+    PetscCall(PetscPrintf(contact->comm, "contact: penalties per unit area; tributary areas of the slave nodes: total %.10g, smallest %g, largest %g\n", (double)asum, (double)amin, (double)amax));
   }
   {
-    PetscInt n = pb->ns;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, pb->comm));
-    if (pb->kauto) PetscCall(PetscPrintf(pb->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N per node (automatic), K_T %s, mu %g, %s tangent\n", n, pb->set[0], pb->nset > 1 ? ", ..." : "", pb->ntools, pb->ktauto ? "per node (automatic)" : "as given", (double)pb->law.mu, pb->fd ? "finite-difference" : "analytic"));
-    else PetscCall(PetscPrintf(pb->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, pb->set[0], pb->nset > 1 ? ", ..." : "", pb->ntools, (double)pb->law.KN, (double)pb->law.KT, (double)pb->law.mu, pb->fd ? "finite-difference" : "analytic"));
-    PetscCheck(n > 0, pb->comm, PETSC_ERR_USER_INPUT, "-contact_set '%s' holds no vertex", pb->set[0]);
+    PetscInt n = contact->ns;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, contact->comm));
+    if (contact->kauto) PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N per node (automatic), K_T %s, mu %g, %s tangent\n", n, contact->set[0], contact->nset > 1 ? ", ..." : "", contact->ntools, contact->ktauto ? "per node (automatic)" : "as given", (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
+    else PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, contact->set[0], contact->nset > 1 ? ", ..." : "", contact->ntools, (double)contact->law.KN, (double)contact->law.KT, (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
+    PetscCheck(n > 0, contact->comm, PETSC_ERR_USER_INPUT, "-contact_set '%s' holds no vertex", contact->set[0]);
   }
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode ContactDestroy(Contact *c)
 {
-  Contact pb = *c;
+  Contact contact = *c;
 
   PetscFunctionBeginUser;
-  if (!pb) PetscFunctionReturn(0);
-  if (pb->ntools && pb->mesh) {
-    PetscCall(PetscFree4(pb->slave, pb->sgdof, pb->seed, pb->has_seed));
-    PetscCall(PetscFree2(pb->active_prev, pb->tN_prev));
-    PetscCall(PetscFree(pb->pmemo));
-    PetscCall(PetscFree2(pb->cst_c, pb->cst_t));
-    PetscCall(PetscFree3(pb->lam, pb->lam_tool, pb->lam_r));
-    PetscCall(PetscFree2(pb->kn, pb->kt));
+  if (!contact) PetscFunctionReturn(0);
+  if (contact->ntools && contact->mesh) {
+    PetscCall(PetscFree4(contact->slave, contact->sgdof, contact->seed, contact->has_seed));
+    PetscCall(PetscFree2(contact->active_prev, contact->tN_prev));
+    PetscCall(PetscFree(contact->pmemo));
+    PetscCall(PetscFree2(contact->cst_c, contact->cst_t));
+    PetscCall(PetscFree3(contact->lam, contact->lam_tool, contact->lam_r));
+    PetscCall(PetscFree2(contact->kn, contact->kt));
   }
-  PetscCall(ToolsDestroy(pb->ntools, &pb->tools));
+  PetscCall(ToolsDestroy(contact->ntools, &contact->tools));
   PetscCall(PetscFree(*c));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactSeed(Contact pb, const PetscScalar *u, PetscReal lambda, PetscBool from_committed)
+PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lambda, PetscBool from_committed)
 {
   PetscFunctionBeginUser;
   if (from_committed) { /* a step or a retry: no augmentation yet (on every rank) */
-    pb->naug     = 0;
-    pb->omega[0] = pb->omega[1] = 1;
-    pb->aug_pen = pb->aug_dlam = 0;
+    contact->naug     = 0;
+    contact->omega[0] = contact->omega[1] = 1;
+    contact->aug_pen = contact->aug_dlam = 0;
   }
-  if (!pb->ns) PetscFunctionReturn(0);
-  PetscCall(PetscLogEventBegin(pb->ev_pairing, 0, 0, 0, 0));
-  for (PetscInt i = 0; i < pb->ns; i++) {
+  if (!contact->ns) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(contact->ev_pairing, 0, 0, 0, 0));
+  for (PetscInt i = 0; i < contact->ns; i++) {
     double     y[3], t2[3], t1[3];
     Projection pr;
     PetscInt   tool;
     if (from_committed) {
       /* step start or retry: the committed multipliers (the normal one with -contact_augmented
          only) and the committed frame of a node in contact */
-      const ContactState *cc = &pb->cst_c[i];
-      pb->lam_tool[i]        = cc->status != CONTACT_OPEN ? cc->tool : -1;
-      pb->lam[3 * i]         = (pb->aug && cc->status != CONTACT_OPEN) ? cc->lN : 0;
-      pb->lam[3 * i + 1]     = cc->lT[0];
-      pb->lam[3 * i + 2]     = cc->lT[1];
-      pb->lam_r[3 * i] = pb->lam_r[3 * i + 1] = pb->lam_r[3 * i + 2] = 0;
+      const ContactState *cc = &contact->cst_c[i];
+      contact->lam_tool[i]        = cc->status != CONTACT_OPEN ? cc->tool : -1;
+      contact->lam[3 * i]         = (contact->aug && cc->status != CONTACT_OPEN) ? cc->lN : 0;
+      contact->lam[3 * i + 1]     = cc->lT[0];
+      contact->lam[3 * i + 2]     = cc->lT[1];
+      contact->lam_r[3 * i] = contact->lam_r[3 * i + 1] = contact->lam_r[3 * i + 2] = 0;
 
-      pb->has_seed[i] = (pb->cst_c[i].has_frame && pb->cst_c[i].status != CONTACT_OPEN) ? PETSC_TRUE : PETSC_FALSE;
-      if (pb->has_seed[i])
-        for (int k = 0; k < 3; k++) pb->seed[3 * i + k] = pb->cst_c[i].t1[k];
+      contact->has_seed[i] = (contact->cst_c[i].has_frame && contact->cst_c[i].status != CONTACT_OPEN) ? PETSC_TRUE : PETSC_FALSE;
+      if (contact->has_seed[i])
+        for (int k = 0; k < 3; k++) contact->seed[3 * i + k] = contact->cst_c[i].t1[k];
     }
-    NodePosition(pb, i, u, y);
-    tool = PairNode(pb, i, y, lambda, &pr);
+    NodePosition(contact, i, u, y);
+    tool = PairNode(contact, i, y, lambda, &pr);
     if (tool < 0) {
-      pb->has_seed[i] = PETSC_FALSE;
+      contact->has_seed[i] = PETSC_FALSE;
       continue;
     }
     if (!from_committed) {
       /* start of a Newton iteration: eq 30, t2 = n x t1(previous iteration), t1 = t2 x n, for the
          nodes in contact; a node out of contact forgets its frame */
-      const double lN    = pb->lam_tool[i] == tool ? pb->lam[3 * i] : 0;
-      const PetscBool in = (pr.gap <= 0 || (lN > 0 && lN - NodeLaw(pb, i).KN * pr.gap > 0)) ? PETSC_TRUE : PETSC_FALSE;
-      if (in && pb->has_seed[i] && !ContactFrame(pr.n, pb->seed + 3 * i, t1, t2))
-        for (int k = 0; k < 3; k++) pb->seed[3 * i + k] = t1[k];
-      else if (!in) pb->has_seed[i] = PETSC_FALSE;
+      const double lN    = contact->lam_tool[i] == tool ? contact->lam[3 * i] : 0;
+      const PetscBool in = (pr.gap <= 0 || (lN > 0 && lN - NodeLaw(contact, i).KN * pr.gap > 0)) ? PETSC_TRUE : PETSC_FALSE;
+      if (in && contact->has_seed[i] && !ContactFrame(pr.n, contact->seed + 3 * i, t1, t2))
+        for (int k = 0; k < 3; k++) contact->seed[3 * i + k] = t1[k];
+      else if (!in) contact->has_seed[i] = PETSC_FALSE;
     }
-    if (!pb->has_seed[i]) { /* first contact: the chord of eq 28 */
-      Chord(pb, tool, &pr, pb->seed + 3 * i);
-      pb->has_seed[i] = PETSC_TRUE;
+    if (!contact->has_seed[i]) { /* first contact: the chord of eq 28 */
+      Chord(contact, tool, &pr, contact->seed + 3 * i);
+      contact->has_seed[i] = PETSC_TRUE;
     }
   }
-  PetscCall(PetscLogEventEnd(pb->ev_pairing, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(contact->ev_pairing, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* Contribution of slave node i at position y: residual R, tangent K (if asked), trial state */
-static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda, double R[3], double *K, ContactState *st)
+static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal lambda, double R[3], double *K, ContactState *st)
 {
-  const ContactState *cc = &pb->cst_c[i];
+  const ContactState *cc = &contact->cst_c[i];
   Projection          pr;
   double              sh[3], shc[3], ds[3], tTn[2] = {0, 0}, dn[9], *dnp = NULL;
   PetscInt            tool;
-  const ContactLaw    law = NodeLaw(pb, i);
+  const ContactLaw    law = NodeLaw(contact, i);
   double              lN  = 0;
 
   memset(R, 0, 3 * sizeof(double));
@@ -540,7 +540,7 @@ static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda,
   st->tN                = 0;
   st->status            = CONTACT_OPEN;
   st->has_frame         = PETSC_FALSE;
-  tool                  = PairNode(pb, i, y, lambda, &pr);
+  tool                  = PairNode(contact, i, y, lambda, &pr);
   st->tool              = tool;
   st->gap               = tool < 0 ? PETSC_INFINITY : pr.gap;
   if (tool < 0) return 0;
@@ -548,19 +548,19 @@ static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda,
   st->xi    = pr.xi;
   st->eta   = pr.eta;
   /* the multipliers of the current solve (the committed state's at the start of a step) */
-  if (pb->lam_tool[i] == tool) {
-    lN     = pb->lam[3 * i];
-    tTn[0] = pb->lam[3 * i + 1];
-    tTn[1] = pb->lam[3 * i + 2];
+  if (contact->lam_tool[i] == tool) {
+    lN     = contact->lam[3 * i];
+    tTn[0] = contact->lam[3 * i + 1];
+    tTn[1] = contact->lam[3 * i + 2];
   }
   if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0)) return 0;
 
-  const Tool *tl = &pb->tools[tool];
+  const Tool *tl = &contact->tools[tool];
   ToolShift(tl, lambda, sh);
-  ToolShift(tl, pb->lambda_c, shc);
+  ToolShift(tl, contact->lambda_c, shc);
   /* slip increment: the node's displacement relative to the tool over the step */
   for (int k = 0; k < 3; k++) ds[k] = (y[k] - cc->y[k]) - (sh[k] - shc[k]);
-  if (K && !pb->fd) {
+  if (K && !contact->fd) {
     if (PatchNormalDerivative(&tl->patch[pr.patch], sh, y, &pr, dn)) {
       /* no closed form (Coons patch): the derivative of the normal by central differences */
       const double h = 1e-6 * (1.0 + fabs(y[0]) + fabs(y[1]) + fabs(y[2]));
@@ -569,13 +569,13 @@ static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda,
         Projection pp, pm;
         yp[j] += h;
         ym[j] -= h;
-        if (ToolProject(tl, sh, yp, pb->search, &pp) || ToolProject(tl, sh, ym, pb->search, &pm)) return 1;
+        if (ToolProject(tl, sh, yp, contact->search, &pp) || ToolProject(tl, sh, ym, contact->search, &pm)) return 1;
         for (int k = 0; k < 3; k++) dn[3 * k + j] = (pp.n[k] - pm.n[k]) / (2 * h);
       }
     }
     dnp = dn;
   }
-  st->status    = ContactNodeEvalAug(&law, lN, pr.gap, pr.n, dnp, pb->seed + 3 * i, tTn, ds, R, pb->fd ? NULL : K, st->t1, &st->tN, st->tT);
+  st->status    = ContactNodeEvalAug(&law, lN, pr.gap, pr.n, dnp, contact->seed + 3 * i, tTn, ds, R, contact->fd ? NULL : K, st->t1, &st->tN, st->tT);
   st->has_frame = PETSC_TRUE;
   for (int k = 0; k < 3; k++) {
     st->f[k]  = -R[k];
@@ -587,7 +587,7 @@ static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda,
     for (int k = 0; k < 3; k++) dt2 += (ds[k] - dsn * pr.n[k]) * (ds[k] - dsn * pr.n[k]);
     st->slip = cc->slip + sqrt(dt2);
   }
-  if (K && pb->fd) {
+  if (K && contact->fd) {
     /* per-node 3x3 finite-difference tangent: the contact block of a node depends on that node only */
     const double h = 1e-7 * (1.0 + fabs(y[0]) + fabs(y[1]) + fabs(y[2]));
     for (int j = 0; j < 3; j++) {
@@ -595,68 +595,68 @@ static int NodeEval(Contact pb, PetscInt i, const double y[3], PetscReal lambda,
       ContactState sp;
       yp[j] += h;
       ym[j] -= h;
-      if (NodeEval(pb, i, yp, lambda, Rp, NULL, &sp) || NodeEval(pb, i, ym, lambda, Rm, NULL, &sp)) return 1;
+      if (NodeEval(contact, i, yp, lambda, Rp, NULL, &sp) || NodeEval(contact, i, ym, lambda, Rm, NULL, &sp)) return 1;
       for (int k = 0; k < 3; k++) K[3 * k + j] = (Rp[k] - Rm[k]) / (2 * h);
     }
   }
   return 0;
 }
 
-PetscErrorCode ContactAssemble(Contact pb, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v, PetscInt *nfail_out)
+PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v, PetscInt *nfail_out)
 {
   PetscInt nfail = 0;
 
   PetscFunctionBeginUser;
   *nfail_out = 0;
-  if (!pb->ns) PetscFunctionReturn(0);
-  PetscCall(PetscLogEventBegin(pb->ev_contact, 0, 0, 0, 0));
+  if (!contact->ns) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(contact->ev_contact, 0, 0, 0, 0));
   /* pairing phase: every slave node to its tool and patch (kept in the node's memo) */
-  PetscCall(PetscLogEventBegin(pb->ev_pairing, 0, 0, 0, 0));
-  for (PetscInt i = 0; i < pb->ns; i++) {
+  PetscCall(PetscLogEventBegin(contact->ev_pairing, 0, 0, 0, 0));
+  for (PetscInt i = 0; i < contact->ns; i++) {
     double     y[3];
     Projection pr;
-    NodePosition(pb, i, u, y);
-    (void)PairNode(pb, i, y, lambda, &pr);
+    NodePosition(contact, i, u, y);
+    (void)PairNode(contact, i, y, lambda, &pr);
   }
-  PetscCall(PetscLogEventEnd(pb->ev_pairing, 0, 0, 0, 0));
-  for (PetscInt i = 0; i < pb->ns; i++) {
+  PetscCall(PetscLogEventEnd(contact->ev_pairing, 0, 0, 0, 0));
+  for (PetscInt i = 0; i < contact->ns; i++) {
     double         y[3], R[3], K[9];
-    const PetscInt v = pb->slave[i];
-    NodePosition(pb, i, u, y);
-    if (NodeEval(pb, i, y, lambda, R, J ? K : NULL, &pb->cst_t[i])) {
+    const PetscInt v = contact->slave[i];
+    NodePosition(contact, i, u, y);
+    if (NodeEval(contact, i, y, lambda, R, J ? K : NULL, &contact->cst_t[i])) {
       nfail++;
       if (J) PetscCall(PetscArrayzero(K, 9)); /* keep the coordinate-assembly slots aligned */
       if (!J) continue;
     }
     if (f)
-      for (int k = 0; k < 3; k++) f[pb->mesh->vloff[v] + k] += R[k];
+      for (int k = 0; k < 3; k++) f[contact->mesh->vloff[v] + k] += R[k];
     if (J) {
       if (coo_v) {
         PetscInt m = 0;
         for (int r = 0; r < 3; r++)
           for (int c = 0; c < 3; c++)
-            if (pb->sgdof[3 * i + r] >= 0 && pb->sgdof[3 * i + c] >= 0) coo_v[m++] = K[3 * r + c];
+            if (contact->sgdof[3 * i + r] >= 0 && contact->sgdof[3 * i + c] >= 0) coo_v[m++] = K[3 * r + c];
         coo_v += m;
-      } else PetscCall(MatSetValues(J, 3, pb->sgdof + 3 * i, 3, pb->sgdof + 3 * i, K, ADD_VALUES));
+      } else PetscCall(MatSetValues(J, 3, contact->sgdof + 3 * i, 3, contact->sgdof + 3 * i, K, ADD_VALUES));
     }
   }
   *nfail_out = nfail;
-  PetscCall(PetscLogEventEnd(pb->ev_contact, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(contact->ev_contact, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactGetCOO(Contact pb, PetscCount *n, PetscInt *ci, PetscInt *cj)
+PetscErrorCode ContactGetCOO(Contact contact, PetscCount *n, PetscInt *ci, PetscInt *cj)
 {
   PetscCount m = 0;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < pb->ns; i++)
+  for (PetscInt i = 0; i < contact->ns; i++)
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++)
-        if (pb->sgdof[3 * i + r] >= 0 && pb->sgdof[3 * i + c] >= 0) {
+        if (contact->sgdof[3 * i + r] >= 0 && contact->sgdof[3 * i + c] >= 0) {
           if (ci) {
-            ci[m] = pb->sgdof[3 * i + r];
-            cj[m] = pb->sgdof[3 * i + c];
+            ci[m] = contact->sgdof[3 * i + r];
+            cj[m] = contact->sgdof[3 * i + c];
           }
           m++;
         }
@@ -667,46 +667,46 @@ PetscErrorCode ContactGetCOO(Contact pb, PetscCount *n, PetscInt *ci, PetscInt *
 /* in contact with a force: the node presses on the tool (a touching node, g = 0, carries none) */
 static inline PetscBool Pressed(const ContactState *st) { return (st->status != CONTACT_OPEN && st->tN > 0) ? PETSC_TRUE : PETSC_FALSE; }
 
-PetscErrorCode ContactCommit(Contact pb, PetscReal lambda)
+PetscErrorCode ContactCommit(Contact contact, PetscReal lambda)
 {
   PetscFunctionBeginUser;
-  if (pb->ns) PetscCall(PetscArraycpy(pb->cst_c, pb->cst_t, pb->ns));
+  if (contact->ns) PetscCall(PetscArraycpy(contact->cst_c, contact->cst_t, contact->ns));
   /* the multipliers the next step starts from: the forces of this one (the Uzawa update
      lN <- <lN - K_N g> = t_N, lT <- the returned tT); the normal one only with augmentation */
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    ContactState *s = &pb->cst_c[i];
-    s->lN           = (pb->aug && s->status != CONTACT_OPEN) ? s->tN : 0;
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    ContactState *s = &contact->cst_c[i];
+    s->lN           = (contact->aug && s->status != CONTACT_OPEN) ? s->tN : 0;
     s->lT[0]        = s->tT[0];
     s->lT[1]        = s->tT[1];
   }
-  pb->lambda_c = lambda;
+  contact->lambda_c = lambda;
   PetscFunctionReturn(0);
 }
 
-PetscBool ContactAugmented(Contact pb) { return (pb->aug && pb->ntools) ? PETSC_TRUE : PETSC_FALSE; }
-PetscInt  ContactAugmentedMax(Contact pb) { return pb->aug_max; }
+PetscBool ContactAugmented(Contact contact) { return (contact->aug && contact->ntools) ? PETSC_TRUE : PETSC_FALSE; }
+PetscInt  ContactAugmentedMax(Contact contact) { return contact->aug_max; }
 
 /* One Uzawa update from the trial state of the last evaluation (the converged Newton solution at
    the current multipliers): lN <- <lN - K_N g> (= t_N), lT <- the return map of the augmented
    predictor lT + K_T dg_T (= t_T); converged when the largest penetration of a pressed node and the
    largest stick slip of the step (|change of lT|/K_T at a sticking node) are below the tolerance
    and no multiplier changed by more than -contact_augmented_multiplier_tol times the largest. */
-PetscErrorCode ContactAugment(Contact pb, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda)
+PetscErrorCode ContactAugment(Contact contact, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda)
 {
   PetscReal loc[4] = {0, 0, 0, 0}, gl[4]; /* penetration, stick slip, change, largest multiplier */
   PetscReal dot[4] = {0, 0, 0, 0}, gdot[4], omega[2] = {1, 1};
 
   PetscFunctionBeginUser;
   /* the Uzawa increments r = (t_N, t_T) - (lN, lT) at the solution */
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    const ContactState *st   = &pb->cst_t[i];
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const ContactState *st   = &contact->cst_t[i];
     const PetscBool     in   = st->status != CONTACT_OPEN ? PETSC_TRUE : PETSC_FALSE;
     const PetscInt      nt   = in ? st->tool : -1;
     const PetscReal     nN   = in ? st->tN : 0, nT[2] = {in ? st->tT[0] : 0, in ? st->tT[1] : 0};
-    const PetscBool     same = (pb->lam_tool[i] == nt && nt >= 0) ? PETSC_TRUE : PETSC_FALSE;
-    PetscReal          *l = pb->lam + 3 * i, r[3];
+    const PetscBool     same = (contact->lam_tool[i] == nt && nt >= 0) ? PETSC_TRUE : PETSC_FALSE;
+    PetscReal          *l = contact->lam + 3 * i, r[3];
     if (!same) l[0] = l[1] = l[2] = 0;
-    pb->lam_tool[i] = nt;
+    contact->lam_tool[i] = nt;
     r[0]            = nN - l[0];
     r[1]            = nT[0] - l[1];
     r[2]            = nT[1] - l[2];
@@ -714,24 +714,24 @@ PetscErrorCode ContactAugment(Contact pb, PetscBool *converged, PetscReal *maxpe
     loc[2]             = PetscMax(loc[2], PetscSqrtReal(r[0] * r[0] + dT * dT));
     loc[3]             = PetscMax(loc[3], PetscSqrtReal(nN * nN + nT[0] * nT[0] + nT[1] * nT[1]));
     if (Pressed(st)) loc[0] = PetscMax(loc[0], -st->gap);
-    if (st->status == CONTACT_STICK && pb->law.mu > 0) loc[1] = PetscMax(loc[1], dT / NodeLaw(pb, i).KT);
+    if (st->status == CONTACT_STICK && contact->law.mu > 0) loc[1] = PetscMax(loc[1], dT / NodeLaw(contact, i).KT);
     for (int k = 0; k < 3; k++) {
-      const PetscReal d = r[k] - pb->lam_r[3 * i + k];
-      dot[2 * (k > 0)] += pb->lam_r[3 * i + k] * d;
+      const PetscReal d = r[k] - contact->lam_r[3 * i + k];
+      dot[2 * (k > 0)] += contact->lam_r[3 * i + k] * d;
       dot[2 * (k > 0) + 1] += d * d;
     }
   }
-  PetscCall(MPIU_Allreduce(loc, gl, 4, MPIU_REAL, MPIU_MAX, pb->comm));
-  PetscCall(MPIU_Allreduce(dot, gdot, 4, MPIU_REAL, MPIU_SUM, pb->comm));
+  PetscCall(MPIU_Allreduce(loc, gl, 4, MPIU_REAL, MPIU_MAX, contact->comm));
+  PetscCall(MPIU_Allreduce(dot, gdot, 4, MPIU_REAL, MPIU_SUM, contact->comm));
   /* Aitken's relaxation of the fixed-point iteration lambda <- lambda + r (Irons and Tuck): the
      first update of a step is the plain Uzawa one, the later ones lambda + omega r with
      omega = -omega_prev r_prev.(r - r_prev)/|r - r_prev|^2, kept in [1, 100]; one factor for the
      normal multipliers, one for the tangential ones (their rates differ: K_N against K_T) */
   for (int k = 0; k < 2; k++)
-    if (pb->naug > 0 && gdot[2 * k + 1] > 0) omega[k] = PetscMin(PetscMax(-pb->omega[k] * gdot[2 * k] / gdot[2 * k + 1], 1.0), 100.0);
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    const ContactState *st = &pb->cst_t[i];
-    PetscReal          *l  = pb->lam + 3 * i, *r = pb->lam_r + 3 * i;
+    if (contact->naug > 0 && gdot[2 * k + 1] > 0) omega[k] = PetscMin(PetscMax(-contact->omega[k] * gdot[2 * k] / gdot[2 * k + 1], 1.0), 100.0);
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const ContactState *st = &contact->cst_t[i];
+    PetscReal          *l  = contact->lam + 3 * i, *r = contact->lam_r + 3 * i;
     const PetscBool     in = st->status != CONTACT_OPEN ? PETSC_TRUE : PETSC_FALSE;
     r[0]                   = (in ? st->tN : 0) - l[0];
     r[1]                   = (in ? st->tT[0] : 0) - l[1];
@@ -740,29 +740,29 @@ PetscErrorCode ContactAugment(Contact pb, PetscBool *converged, PetscReal *maxpe
     /* back into the admissible set: lN >= 0, |lT| <= mu lN */
     l[0] = PetscMax(l[0], 0);
     {
-      const PetscReal nT = PetscSqrtReal(l[1] * l[1] + l[2] * l[2]), cap = pb->law.mu * l[0];
+      const PetscReal nT = PetscSqrtReal(l[1] * l[1] + l[2] * l[2]), cap = contact->law.mu * l[0];
       if (nT > cap) {
         l[1] = nT > 0 ? l[1] * cap / nT : 0;
         l[2] = nT > 0 ? l[2] * cap / nT : 0;
       }
     }
   }
-  pb->omega[0] = omega[0];
-  pb->omega[1] = omega[1];
-  pb->naug++;
-  pb->aug_pen  = gl[0];
-  pb->aug_dlam = gl[2];
+  contact->omega[0] = omega[0];
+  contact->omega[1] = omega[1];
+  contact->naug++;
+  contact->aug_pen  = gl[0];
+  contact->aug_dlam = gl[2];
   *maxpen      = gl[0];
   *dlambda     = gl[2];
-  *converged   = (gl[0] <= pb->tol && gl[1] <= pb->tol && gl[2] <= pb->aug_mtol * gl[3]) ? PETSC_TRUE : PETSC_FALSE;
+  *converged   = (gl[0] <= contact->tol && gl[1] <= contact->tol && gl[2] <= contact->aug_mtol * gl[3]) ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactAugmentTolerances(Contact pb, PetscReal *tol, PetscReal *mtol)
+PetscErrorCode ContactAugmentTolerances(Contact contact, PetscReal *tol, PetscReal *mtol)
 {
   PetscFunctionBeginUser;
-  *tol  = pb->tol;
-  *mtol = pb->aug_mtol;
+  *tol  = contact->tol;
+  *mtol = contact->aug_mtol;
   PetscFunctionReturn(0);
 }
 
@@ -770,32 +770,32 @@ PetscErrorCode ContactAugmentTolerances(Contact pb, PetscReal *tol, PetscReal *m
 /* Chattering: nodes whose contact status changed in the last Newton iteration although they carry
    a significant normal force, before (a node leaving) or after (a node entering): more than 1e-3
    of the largest normal force. Returns the count over all ranks and the smallest such node id. */
-PetscErrorCode ContactChatter(Contact pb, PetscInt *count, PetscInt *node)
+PetscErrorCode ContactChatter(Contact contact, PetscInt *count, PetscInt *node)
 {
   PetscReal tmax = 0;
   PetscInt  c = 0, id = PETSC_MAX_INT;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < pb->ns; i++) tmax = PetscMax(tmax, PetscMax(pb->cst_t[i].tN, pb->tN_prev[i]));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tmax, 1, MPIU_REAL, MPIU_MAX, pb->comm));
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    const PetscBool active = pb->cst_t[i].status != CONTACT_OPEN;
-    if (active != pb->active_prev[i] && PetscMax(pb->cst_t[i].tN, pb->tN_prev[i]) > 1e-3 * tmax) {
+  for (PetscInt i = 0; i < contact->ns; i++) tmax = PetscMax(tmax, PetscMax(contact->cst_t[i].tN, contact->tN_prev[i]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tmax, 1, MPIU_REAL, MPIU_MAX, contact->comm));
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const PetscBool active = contact->cst_t[i].status != CONTACT_OPEN;
+    if (active != contact->active_prev[i] && PetscMax(contact->cst_t[i].tN, contact->tN_prev[i]) > 1e-3 * tmax) {
       c++;
-      id = PetscMin(id, pb->mesh->node_id[pb->slave[i]]);
+      id = PetscMin(id, contact->mesh->node_id[contact->slave[i]]);
     }
   }
-  PetscCall(MPIU_Allreduce(&c, count, 1, MPIU_INT, MPI_SUM, pb->comm));
-  PetscCall(MPIU_Allreduce(&id, node, 1, MPIU_INT, MPI_MIN, pb->comm));
+  PetscCall(MPIU_Allreduce(&c, count, 1, MPIU_INT, MPI_SUM, contact->comm));
+  PetscCall(MPIU_Allreduce(&id, node, 1, MPIU_INT, MPI_MIN, contact->comm));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactRecordActive(Contact pb)
+PetscErrorCode ContactRecordActive(Contact contact)
 {
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    pb->active_prev[i] = pb->cst_t[i].status != CONTACT_OPEN;
-    pb->tN_prev[i]     = pb->cst_t[i].status != CONTACT_OPEN ? pb->cst_t[i].tN : 0;
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    contact->active_prev[i] = contact->cst_t[i].status != CONTACT_OPEN;
+    contact->tN_prev[i]     = contact->cst_t[i].status != CONTACT_OPEN ? contact->cst_t[i].tN : 0;
   }
   PetscFunctionReturn(0);
 }
@@ -815,9 +815,9 @@ static void ToolDirection(const Tool *t, double m[3])
   }
 }
 
-PetscErrorCode ContactGetToolResult(Contact pb, PetscInt t, PetscReal lambda, ContactToolResult *r)
+PetscErrorCode ContactGetToolResult(Contact contact, PetscInt t, PetscReal lambda, ContactToolResult *r)
 {
-  const Tool *tl = &pb->tools[t];
+  const Tool *tl = &contact->tools[t];
   /* sums: force along dir, f (3), normal resultant (3), tangential resultant (3), active, stick, slip */
   double      loc[15] = {0}, pen = 0, gl[15], gpen;
 
@@ -828,8 +828,8 @@ PetscErrorCode ContactGetToolResult(Contact pb, PetscInt t, PetscReal lambda, Co
   ToolShift(tl, lambda, r->shift);
   r->travel = r->shift[0] * r->dir[0] + r->shift[1] * r->dir[1] + r->shift[2] * r->dir[2];
   r->path   = ToolTravel(tl, lambda);
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    const ContactState *st = &pb->cst_c[i];
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const ContactState *st = &contact->cst_c[i];
     if (st->tool != t || st->status == CONTACT_OPEN) continue;
     loc[0] += st->f[0] * r->dir[0] + st->f[1] * r->dir[1] + st->f[2] * r->dir[2];
     for (int k = 0; k < 3; k++) {
@@ -839,7 +839,7 @@ PetscErrorCode ContactGetToolResult(Contact pb, PetscInt t, PetscReal lambda, Co
     }
     if (Pressed(st)) {
       loc[10] += 1;
-      if (pb->law.mu > 0) {
+      if (contact->law.mu > 0) {
         loc[11] += st->status == CONTACT_STICK;
         loc[12] += st->status == CONTACT_SLIP;
       }
@@ -850,8 +850,8 @@ PetscErrorCode ContactGetToolResult(Contact pb, PetscInt t, PetscReal lambda, Co
       loc[14] += 1;
     }
   }
-  PetscCall(MPIU_Allreduce(loc, gl, 15, MPI_DOUBLE, MPI_SUM, pb->comm));
-  PetscCall(MPIU_Allreduce(&pen, &gpen, 1, MPI_DOUBLE, MPI_MAX, pb->comm));
+  PetscCall(MPIU_Allreduce(loc, gl, 15, MPI_DOUBLE, MPI_SUM, contact->comm));
+  PetscCall(MPIU_Allreduce(&pen, &gpen, 1, MPI_DOUBLE, MPI_MAX, contact->comm));
   r->force = gl[0];
   for (int k = 0; k < 3; k++) r->f[k] = gl[1 + k];
   r->fn      = sqrt(gl[4] * gl[4] + gl[5] * gl[5] + gl[6] * gl[6]);
@@ -861,28 +861,28 @@ PetscErrorCode ContactGetToolResult(Contact pb, PetscInt t, PetscReal lambda, Co
   r->slip    = (PetscInt)gl[12];
   r->max_pen = gpen;
   r->mean_pen = gl[14] > 0 ? gl[13] / gl[14] : 0;
-  r->augmentations = pb->naug;
-  r->dlambda = pb->aug_dlam;
+  r->augmentations = contact->naug;
+  r->dlambda = contact->aug_dlam;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactGetNodeFields(Contact pb, PetscReal *cg, PetscReal *cn, PetscReal *ct, PetscReal *cst, PetscReal *csl)
+PetscErrorCode ContactGetNodeFields(Contact contact, PetscReal *cg, PetscReal *cn, PetscReal *ct, PetscReal *cst, PetscReal *csl)
 {
-  const Mesh *m = pb->mesh;
+  const Mesh *m = contact->mesh;
 
   PetscFunctionBeginUser;
   PetscCall(PetscArrayzero(cn, m->nvo));
   PetscCall(PetscArrayzero(ct, 3 * m->nvo));
   PetscCall(PetscArrayzero(cst, m->nvo));
   PetscCall(PetscArrayzero(csl, m->nvo));
-  for (PetscInt k = 0; k < m->nvo; k++) cg[k] = pb->search;
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    const ContactState *st = &pb->cst_c[i];
-    const PetscInt      r  = m->vrow[pb->slave[i]];
-    cg[r]                  = PetscIsInfReal(st->gap) ? pb->search : st->gap;
+  for (PetscInt k = 0; k < m->nvo; k++) cg[k] = contact->search;
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const ContactState *st = &contact->cst_c[i];
+    const PetscInt      r  = m->vrow[contact->slave[i]];
+    cg[r]                  = PetscIsInfReal(st->gap) ? contact->search : st->gap;
     cn[r]                  = st->tN;
     /* 0 open or touching without force, 1 stick, 2 slip, 3 pressed without friction */
-    cst[r] = !Pressed(st) ? 0 : (pb->law.mu > 0 ? st->status : 3);
+    cst[r] = !Pressed(st) ? 0 : (contact->law.mu > 0 ? st->status : 3);
     csl[r] = st->slip;
     for (int k = 0; k < 3; k++) ct[3 * r + k] = st->fT[k];
   }
@@ -893,28 +893,28 @@ PetscErrorCode ContactGetNodeFields(Contact pb, PetscReal *cg, PetscReal *cn, Pe
 
 PetscInt ContactCheckpointWidth(void) { return CKPT_NCS; }
 
-PetscErrorCode ContactCheckpointPack(Contact pb, PetscReal *rows)
+PetscErrorCode ContactCheckpointPack(Contact contact, PetscReal *rows)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscArrayzero(rows, CKPT_NCS * pb->mesh->nvo));
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    const ContactState *s = &pb->cst_c[i];
+  PetscCall(PetscArrayzero(rows, CKPT_NCS * contact->mesh->nvo));
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const ContactState *s = &contact->cst_c[i];
     const PetscReal     v[CKPT_NCS] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip, s->lN, s->lT[0], s->lT[1]};
-    PetscCall(PetscArraycpy(rows + CKPT_NCS * pb->mesh->vrow[pb->slave[i]], v, CKPT_NCS));
+    PetscCall(PetscArraycpy(rows + CKPT_NCS * contact->mesh->vrow[contact->slave[i]], v, CKPT_NCS));
   }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactCheckpointUnpack(Contact pb, const PetscReal *rows, PetscReal lambda, const char *path)
+PetscErrorCode ContactCheckpointUnpack(Contact contact, const PetscReal *rows, PetscReal lambda, const char *path)
 {
   PetscInt bad = PETSC_MAX_INT;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < pb->ns; i++) {
-    const PetscReal *d = rows + CKPT_NCS * pb->mesh->vrow[pb->slave[i]];
-    ContactState    *s = &pb->cst_c[i];
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const PetscReal *d = rows + CKPT_NCS * contact->mesh->vrow[contact->slave[i]];
+    ContactState    *s = &contact->cst_c[i];
     if (d[0] != 1) {
-      bad = PetscMin(bad, pb->mesh->node_id[pb->slave[i]]);
+      bad = PetscMin(bad, contact->mesh->node_id[contact->slave[i]]);
       continue;
     }
     s->status    = (PetscInt)d[1];
@@ -938,9 +938,9 @@ PetscErrorCode ContactCheckpointUnpack(Contact pb, const PetscReal *rows, PetscR
     s->lT[0] = d[25];
     s->lT[1] = d[26];
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, pb->comm));
-  PetscCheck(bad == PETSC_MAX_INT, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: node id %" PetscInt_FMT " is a slave node here but not in the checkpoint", path, bad);
-  if (pb->ns) PetscCall(PetscArraycpy(pb->cst_t, pb->cst_c, pb->ns));
-  pb->lambda_c = lambda;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, contact->comm));
+  PetscCheck(bad == PETSC_MAX_INT, contact->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: node id %" PetscInt_FMT " is a slave node here but not in the checkpoint", path, bad);
+  if (contact->ns) PetscCall(PetscArraycpy(contact->cst_t, contact->cst_c, contact->ns));
+  contact->lambda_c = lambda;
   PetscFunctionReturn(0);
 }
