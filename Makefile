@@ -50,7 +50,7 @@ bin/atrito: build/main.o build/lib.a | $(DEPS_STAMP)
 	@mkdir -p bin
 	$(CC) $(CFLAGS) $^ -o $@ $(LDLIBS)
 
-bin/test_%: tests/test_%.c tests/testutil.h build/lib.a $(wildcard include/*.h src/*/*.h) | $(DEPS_STAMP)
+bin/test_%: tests/test_%.c $(wildcard tests/*.h) build/lib.a $(wildcard include/*.h src/*/*.h) | $(DEPS_STAMP)
 	@mkdir -p bin
 	$(CC) $(CPPFLAGS) $(CFLAGS) $< build/lib.a -o $@ $(LDLIBS)
 
@@ -68,7 +68,7 @@ SAN_OBJ   := $(LIB_SRC:src/%.c=build-san/%.o)
 build-san/%.o: src/%.c $(wildcard include/*.h src/*/*.h) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(SAN_FLAGS) -c $< -o $@
-bin-san/test_%: tests/test_%.c tests/testutil.h $(SAN_OBJ) | $(DEPS_STAMP)
+bin-san/test_%: tests/test_%.c $(wildcard tests/*.h) $(SAN_OBJ) | $(DEPS_STAMP)
 	@mkdir -p bin-san
 	$(CC) $(CPPFLAGS) $(SAN_FLAGS) $< $(SAN_OBJ) -o $@ $(LDLIBS)
 sanitize: $(TEST_BIN:bin/%=bin-san/%)

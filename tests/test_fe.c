@@ -7,6 +7,7 @@
 #include <string.h>
 #include <petscsys.h>
 #include "testutil.h"
+#include "testcapture.h"
 #include "element.h"
 #include "element_hex8.h"
 #include "material_impl.h"
@@ -362,16 +363,6 @@ static PetscErrorCode MaterialCreate_Neo(Material mat)
   mat->kernel.history_init   = NeoHistoryInit;
   mat->kernel.plastic_strain = NeoPlasticStrain;
   PetscFunctionReturn(0);
-}
-
-/* ---------- error capture ---------- */
-static char ErrMsg[4096];
-
-static PetscErrorCode CaptureHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
-{
-  PetscFunctionBeginUser;
-  if (p == PETSC_ERROR_INITIAL) snprintf(ErrMsg, sizeof(ErrMsg), "%s", mess ? mess : "");
-  PetscFunctionReturn(n);
 }
 
 /* create an Element and a Material from the options in opts; ierr: the first error, objects NULL then */

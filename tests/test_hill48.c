@@ -15,47 +15,14 @@
 #include "options.h"
 #include "tensor.h"
 #include "testutil.h"
+#include "testmat.h"
 
 static const double PI = 3.14159265358979323846;
-
-static double urand(unsigned long long *s) /* uniform in [-1, 1) */
-{
-  *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
-  return 2.0 * (double)(*s >> 11) / 9007199254740992.0 - 1.0;
-}
-
-static double fnorm(const double *A, int n)
-{
-  double s = 0.0;
-  for (int i = 0; i < n; i++) s += A[i] * A[i];
-  return sqrt(s);
-}
-
-static double fdiff(const double *A, const double *B, int n)
-{
-  double s = 0.0;
-  for (int i = 0; i < n; i++) s += (A[i] - B[i]) * (A[i] - B[i]);
-  return sqrt(s);
-}
 
 static double rel(const double *A, const double *B, int n)
 {
   const double s = fnorm(B, n);
   return fdiff(A, B, n) / (s > 0 ? s : 1.0);
-}
-
-static void rotation(const double a_[3], double th, double R[9])
-{
-  const double l = sqrt(a_[0] * a_[0] + a_[1] * a_[1] + a_[2] * a_[2]);
-  const double a[3] = {a_[0] / l, a_[1] / l, a_[2] / l}, c = cos(th), s = sin(th);
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) R[3 * i + j] = (i == j ? c : 0.0) + (1.0 - c) * a[i] * a[j];
-  R[1] -= s * a[2];
-  R[2] += s * a[1];
-  R[3] += s * a[2];
-  R[5] -= s * a[0];
-  R[6] -= s * a[1];
-  R[7] += s * a[0];
 }
 
 static void random_rotation(unsigned long long *s, double R[9])
@@ -500,30 +467,6 @@ static void test_objectivity(void)
 }
 
 /* ---------- the Material object ---------- */
-static char ErrMsg[4096];
-
-static PetscErrorCode CaptureHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
-{
-  PetscFunctionBeginUser;
-  if (p == PETSC_ERROR_INITIAL) snprintf(ErrMsg, sizeof(ErrMsg), "%s", mess ? mess : "");
-  PetscFunctionReturn(n);
-}
-
-static PetscErrorCode MaterialFromOptions(const char *opts, Material *mat, PetscErrorCode *ierr)
-{
-  PetscFunctionBeginUser;
-  ErrMsg[0] = '\0';
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, opts));
-  PetscCall(MaterialCreate(PETSC_COMM_WORLD, mat));
-  PetscCall(PetscPushErrorHandler(CaptureHandler, NULL));
-  *ierr = MaterialSetFromOptions(*mat);
-  PetscCall(PetscPopErrorHandler());
-  PetscCall(PetscOptionsClear(NULL));
-  if (*ierr) PetscCall(MaterialDestroy(mat));
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode test_object(void)
 {
   Material              mat;

@@ -5,6 +5,7 @@
 #include <petscsys.h>
 #include "meshgen.h"
 #include "testutil.h"
+#include "testcapture.h"
 
 #define DATA "tests/data/"
 
@@ -191,21 +192,6 @@ static PetscErrorCode VertexChecks(const MeshData *m, double tol, PetscInt *ndup
     if (!used[i]) (*nunused)++;
   PetscCall(PetscFree(used));
   PetscFunctionReturn(0);
-}
-
-/* ---------------------------------------------------------------- error capture */
-static char ErrMsg[4096];
-
-static PetscErrorCode CaptureHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
-{
-  PetscFunctionBeginUser;
-  (void)comm;
-  (void)line;
-  (void)fun;
-  (void)file;
-  (void)ctx;
-  if (p == PETSC_ERROR_INITIAL) snprintf(ErrMsg, sizeof(ErrMsg), "%s", mess ? mess : "");
-  PetscFunctionReturn(n);
 }
 
 /* the deck must fail with a non-zero code, a message containing both needles, and a zeroed m */

@@ -77,37 +77,8 @@ void umat_nan_(UMAT_ARGS)
 #include "material_umat.h"
 #include "tensor.h"
 #include "testutil.h"
+#include "testmat.h"
 
-static double urand(unsigned long long *s)
-{
-  *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
-  return 2.0 * (double)(*s >> 11) / 9007199254740992.0 - 1.0;
-}
-static double fnorm(const double *A, int n)
-{
-  double s = 0.0;
-  for (int i = 0; i < n; i++) s += A[i] * A[i];
-  return sqrt(s);
-}
-static double fdiff(const double *A, const double *B, int n)
-{
-  double s = 0.0;
-  for (int i = 0; i < n; i++) s += (A[i] - B[i]) * (A[i] - B[i]);
-  return sqrt(s);
-}
-static void rotation(const double a_[3], double th, double R[9])
-{
-  const double l = sqrt(a_[0] * a_[0] + a_[1] * a_[1] + a_[2] * a_[2]);
-  const double a[3] = {a_[0] / l, a_[1] / l, a_[2] / l}, c = cos(th), s = sin(th);
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) R[3 * i + j] = (i == j ? c : 0.0) + (1.0 - c) * a[i] * a[j];
-  R[1] -= s * a[2];
-  R[2] += s * a[1];
-  R[3] += s * a[2];
-  R[5] -= s * a[0];
-  R[6] -= s * a[1];
-  R[7] += s * a[0];
-}
 /* F = R (I + a Z), Z random */
 static void random_F(unsigned long long *s, double a, double F[9])
 {
@@ -261,28 +232,6 @@ static void test_status(void)
 }
 
 /* ---------- the Material object with the Fortran J2 UMAT ---------- */
-static char ErrMsg[4096];
-static PetscErrorCode CaptureHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
-{
-  PetscFunctionBeginUser;
-  if (p == PETSC_ERROR_INITIAL) snprintf(ErrMsg, sizeof(ErrMsg), "%s", mess ? mess : "");
-  PetscFunctionReturn(n);
-}
-static PetscErrorCode MaterialFromOptions(const char *opts, Material *mat, PetscErrorCode *ierr)
-{
-  PetscFunctionBeginUser;
-  ErrMsg[0] = '\0';
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, opts));
-  PetscCall(MaterialCreate(PETSC_COMM_WORLD, mat));
-  PetscCall(PetscPushErrorHandler(CaptureHandler, NULL));
-  *ierr = MaterialSetFromOptions(*mat);
-  PetscCall(PetscPopErrorHandler());
-  PetscCall(PetscOptionsClear(NULL));
-  if (*ierr) PetscCall(MaterialDestroy(mat));
-  PetscFunctionReturn(0);
-}
-
 #define SWIFT_OPTS "-material_type umat -material_umat bin/umat_j2.so -material_umat_props 69004,0.3,589,1e-4,0.216 -material_umat_nstatev 1 -material_umat_statev_ep 1"
 
 static J2Params swift_j2(void)
