@@ -34,6 +34,8 @@ run umat            bin/test_umat
 run fe              bin/test_fe
 run eas             bin/test_eas
 run meshgen         bin/test_meshgen
+run loadcurve-np1   mpiexec -n 1 bin/test_loadcurve
+run loadcurve-np2   mpiexec -n 2 bin/test_loadcurve
 run tool            bin/test_tool
 run contact-kernels bin/test_contact
 run contact-object-np1 mpiexec -n 1 bin/test_contact_object
