@@ -84,4 +84,6 @@ PetscErrorCode ContactGetNodeFields(Contact c, PetscReal *gap, PetscReal *fn, Pe
 PetscInt       ContactCheckpointWidth(void);
 PetscErrorCode ContactCheckpointPack(Contact c, PetscReal *rows);
 PetscErrorCode ContactCheckpointUnpack(Contact c, const PetscReal *rows, PetscReal lambda, const char *path);
+/* the sets of the slave nodes (n = 0 without tools), for -partition_balance contact */
+PetscErrorCode ContactGetSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN]);
 #endif

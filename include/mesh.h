@@ -14,7 +14,7 @@
 
 typedef enum { MESH_BOX = 0, MESH_BLANK, MESH_GMSH, MESH_INP } MeshSource;
 
-/* Options of the mesh (-mesh_*, -box_*, -blank_*, -partition) */
+/* Options of the mesh (-mesh_*, -box_*, -blank_*, -partition, -partition_balance) */
 typedef struct {
   MeshSource source;
   PetscBool  given;          /* -mesh_type or -mesh_file was set */
@@ -25,6 +25,7 @@ typedef struct {
   PetscInt   blank_core_cells, blank_radial_cells, blank_layers;
   PetscBool  blank_quarter;
   PetscBool  partition_metis;
+  PetscBool  partition_contact; /* -partition_balance contact: the slave nodes balanced with the cells */
 } MeshOptions;
 
 typedef struct {
@@ -59,6 +60,9 @@ typedef struct {
   /* requested before creation: the sets whose boundary faces give each node a tributary area */
   PetscInt  narea_set;
   char      area_set[8][ATRITO_NAME_LEN];
+  /* requested before creation: the contact sets, for -partition_balance contact */
+  PetscInt  ncontact_set;
+  char      contact_set[8][ATRITO_NAME_LEN];
 } Mesh;
 
 /* reads the mesh options (collective; errors name the option) */
@@ -66,6 +70,8 @@ PetscErrorCode MeshSetFromOptions(MPI_Comm comm, MeshOptions *opt);
 /* before MeshCreate: compute the tributary area of the nodes on the boundary faces of these sets
    (reference configuration, on the serial mesh) and carry it with the distribution */
 PetscErrorCode MeshSetAreaSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN]);
+/* before MeshCreate: the sets of the contact slave nodes (balanced by -partition_balance contact) */
+PetscErrorCode MeshSetContactSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN]);
 /* builds, partitions and distributes the mesh; the sections come with MeshSetConstraints */
 PetscErrorCode MeshCreate(MPI_Comm comm, const MeshOptions *opt, Mesh *m);
 /* section: 3 dofs per vertex, cmask[v] bit c set where component c of local vertex v is

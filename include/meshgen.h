@@ -40,4 +40,10 @@ PetscErrorCode MeshDataCreateBlank(PetscReal R, PetscReal t, PetscReal core, Pet
 PetscErrorCode MeshDataReadInp(const char *file, MeshData *m);
 
 PetscErrorCode MeshDataDestroy(MeshData *m);
+
+/* METIS partition of the cells into nparts (src/mesh/partition.c): epart[ne] the part of each
+   cell, edgecut the dual graph's cut. slave = NULL: the cells balanced (METIS_PartMeshDual, 4
+   common nodes, seed 7); slave[nv] marks the contact slave nodes: the cells and the slave nodes
+   balanced together (two constraints). */
+PetscErrorCode MeshPartitionCells(PetscInt ne, PetscInt nv, const PetscInt conn[], const PetscBool slave[], PetscInt nparts, PetscInt epart[], PetscInt *edgecut);
 #endif

@@ -1,12 +1,13 @@
 /* Partition statistics of a blank mesh for the scaling model (scripts/scaling_model.py builds and
    runs this): the built-in clamped blank (quarter, O-grid) of the given size, partitioned with
-   METIS exactly as the code does (METIS_PartMeshDual, 4 common nodes, seed 7) into each of the
-   given numbers of parts, and per part: owned cells, vertices touched (owned and ghost), owned
+   METIS exactly as the code does (MeshPartitionCells of src/mesh/partition.c: the cells balanced,
+   or with BALANCE = contact the cells and the contact slave nodes together, as
+   -partition_balance contact) into each of the given numbers of parts, and per part: owned cells, vertices touched (owned and ghost), owned
    vertices, neighbours (parts sharing a vertex), contact slave nodes owned (top and bottom sets).
    A vertex is owned by the lowest-numbered part among the cells around it (the model's
    assumption; PETSc's distribution makes a similar choice).
 
-   usage: partition_stats CORE_CELLS RADIAL_CELLS LAYERS P1 [P2 ...]
+   usage: partition_stats CORE_CELLS RADIAL_CELLS LAYERS BALANCE P1 [P2 ...]   (BALANCE: cells or contact)
    output: one line "mesh cells N vertices N slaves N" and per P one line
      "parts P cut C cells_max M cells_mean M verts_owned_max .. ghosts_max .. ghosts_mean ..
       ghost_frac_max .. neighbours_max .. neighbours_mean .. slaves_max .. slaves_mean .. seconds S" */
@@ -30,15 +31,17 @@ int main(int argc, char **argv)
 {
   MeshData m;
 
-  if (argc < 5) {
-    fprintf(stderr, "usage: partition_stats CORE_CELLS RADIAL_CELLS LAYERS P1 [P2 ...]\n");
+  if (argc < 6 || (strcmp(argv[4], "cells") && strcmp(argv[4], "contact"))) {
+    fprintf(stderr, "usage: partition_stats CORE_CELLS RADIAL_CELLS LAYERS cells|contact P1 [P2 ...]\n");
     return 1;
   }
   if (PetscInitializeNoArguments()) return 1;
   memset(&m, 0, sizeof(m));
   if (MeshDataCreateBlank(59.18, 1.0, 0.4, atoi(argv[1]), atoi(argv[2]), atoi(argv[3]), PETSC_TRUE, &m)) return 2;
   const idx_t ne = (idx_t)m.ne, nn = (idx_t)m.nv;
-  char       *slave = calloc((size_t)nn, 1);
+  PetscBool  *slave = calloc((size_t)nn, sizeof(PetscBool));
+  PetscInt   *ep    = malloc(sizeof(PetscInt) * (size_t)ne);
+  const int   balance_contact = !strcmp(argv[4], "contact");
   idx_t       nslave = 0;
   for (PetscInt s = 0; s < m.nnset; s++)
     if (!strcmp(m.nsets[s].name, "top") || !strcmp(m.nsets[s].name, "bottom"))
@@ -67,14 +70,14 @@ int main(int argc, char **argv)
     free(fill);
   }
 
-  for (int arg = 4; arg < argc; arg++) {
-    idx_t  nparts = atoi(argv[arg]), ncommon = 4, objval, opts[METIS_NOPTIONS];
-    double t0 = now();
-    METIS_SetDefaultOptions(opts);
-    opts[METIS_OPTION_NUMBERING] = 0;
-    opts[METIS_OPTION_SEED]      = 7;
-    if (METIS_PartMeshDual((idx_t *)&ne, (idx_t *)&nn, eptr, eind, NULL, NULL, &ncommon, &nparts, NULL, opts, &objval, epart, npart) != METIS_OK) return 3;
+  for (int arg = 5; arg < argc; arg++) {
+    idx_t    nparts = atoi(argv[arg]), objval;
+    PetscInt cut;
+    double   t0 = now();
+    if (MeshPartitionCells(m.ne, m.nv, m.conn, balance_contact ? slave : NULL, nparts, ep, &cut)) return 3;
     const double tpart = now() - t0;
+    objval = (idx_t)cut;
+    for (idx_t e = 0; e < ne; e++) epart[e] = (idx_t)ep[e];
     long *cells = calloc((size_t)nparts, sizeof(long)), *owned = calloc((size_t)nparts, sizeof(long)), *touched = calloc((size_t)nparts, sizeof(long));
     long *slaves = calloc((size_t)nparts, sizeof(long)), *nbrs = calloc((size_t)nparts, sizeof(long));
     for (idx_t e = 0; e < ne; e++) cells[epart[e]]++;
@@ -135,7 +138,7 @@ int main(int argc, char **argv)
     fflush(stdout);
     free(cells); free(owned); free(touched); free(slaves); free(nbrs); free(parts); free(seen); free(nb); free(nbn); free(nbcap);
   }
-  free(eptr); free(eind); free(epart); free(npart); free(vown); free(vptr); free(vcell); free(slave);
+  free(eptr); free(eind); free(epart); free(npart); free(vown); free(vptr); free(vcell); free(slave); free(ep);
   MeshDataDestroy(&m);
   PetscFinalize();
   return 0;

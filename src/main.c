@@ -81,6 +81,8 @@ static PetscErrorCode Run(PetscBool *stop)
       char    (*sets)[ATRITO_NAME_LEN];
       PetscCall(ContactGetAreaSets(contact, &na, &sets));
       PetscCall(MeshSetAreaSets(&mesh, na, sets));
+      PetscCall(ContactGetSets(contact, &na, &sets));
+      PetscCall(MeshSetContactSets(&mesh, na, sets));
       PetscCall(MeshCreate(comm, &mo, &mesh));
       PetscCall(BCComputeMask(&bcs, &mesh, &cmask));
       PetscCall(MeshSetConstraints(&mesh, cmask));
@@ -95,6 +97,12 @@ static PetscErrorCode Run(PetscBool *stop)
       PetscCall(ContactSetYoungModulus(contact, E));
     }
     PetscCall(ContactSetUp(contact, &mesh));
+    if (mesh.size > 1 && ContactNumTools(contact)) { /* the contact work per rank, beside the cells per rank of the mesh line */
+      PetscInt ns = ContactNumSlaves(contact), nmax, nsum;
+      PetscCallMPI(MPI_Allreduce(&ns, &nmax, 1, MPIU_INT, MPI_MAX, comm));
+      PetscCallMPI(MPI_Allreduce(&ns, &nsum, 1, MPIU_INT, MPI_SUM, comm));
+      PetscCall(PetscPrintf(comm, "contact: slave nodes per rank: largest %" PetscInt_FMT ", mean %.1f (imbalance %.3f)\n", nmax, (double)nsum / mesh.size, (double)nmax * mesh.size / PetscMax(nsum, 1)));
+    }
     PetscCall(ProblemSetUp(&pb, &mesh, &bcs, contact, material, element));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscLogStagePush(stage_solve));

@@ -50,6 +50,7 @@ run contact         bash tests/test_contact.sh
 run auglag          bash tests/test_auglag.sh
 run benchmark       bash tests/test_benchmark.sh
 run facets          bash tests/test_facets.sh
+run partition       bash tests/test_partition.sh
 run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh
 run eas-solver      bash tests/test_eas.sh

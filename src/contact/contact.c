@@ -944,3 +944,12 @@ PetscErrorCode ContactCheckpointUnpack(Contact contact, const PetscReal *rows, P
   contact->lambda_c = lambda;
   PetscFunctionReturn(0);
 }
+
+/* the node sets of the slave nodes (for the partition that balances them, MeshSetContactSets) */
+PetscErrorCode ContactGetSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN])
+{
+  PetscFunctionBeginUser;
+  *n    = c->ntools ? c->nset : 0;
+  *sets = c->set;
+  PetscFunctionReturn(0);
+}

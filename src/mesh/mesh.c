@@ -166,32 +166,42 @@ static PetscErrorCode MeshDataLoad(const MeshOptions *o, MeshData *m)
   PetscFunctionReturn(0);
 }
 
-/* METIS partition of the cell (dual) graph, on rank 0 */
-static PetscErrorCode PartitionMetis(const MeshData *m, PetscMPIInt size, PetscInt *sizes, PetscInt *points)
+/* METIS partition of the cells, on rank 0 (MeshPartitionCells); with -partition_balance contact
+   the vertices of the contact sets (node sets, or all vertices of element sets, as the contact
+   object takes them) are balanced with the cells */
+static PetscErrorCode PartitionMetis(const Mesh *mesh, const MeshData *m, char (*names)[ATRITO_NAME_LEN], const PetscInt *is_cell, PetscInt nnames, PetscMPIInt size, PetscInt *sizes, PetscInt *points)
 {
-  idx_t  ne = (idx_t)m->ne, nn = (idx_t)m->nv, ncommon = 4, nparts = (idx_t)size, objval, opts[METIS_NOPTIONS];
-  idx_t *eptr, *eind, *epart, *npart;
-  int    st;
+  PetscInt  *epart, *off;
+  PetscBool *slave = NULL;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc4(ne + 1, &eptr, 8 * ne, &eind, ne, &epart, nn, &npart));
-  for (idx_t e = 0; e <= ne; e++) eptr[e] = 8 * e;
-  for (idx_t i = 0; i < 8 * ne; i++) eind[i] = (idx_t)m->conn[i];
-  METIS_SetDefaultOptions(opts);
-  opts[METIS_OPTION_NUMBERING] = 0;
-  opts[METIS_OPTION_SEED]      = 7;
-  st = METIS_PartMeshDual(&ne, &nn, eptr, eind, NULL, NULL, &ncommon, &nparts, NULL, opts, &objval, epart, npart);
-  PetscCheck(st == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartMeshDual failed (status %d) on %" PetscInt_FMT " cells into %d parts", st, m->ne, size);
-  for (PetscMPIInt r = 0; r < size; r++) sizes[r] = 0;
-  for (idx_t e = 0; e < ne; e++) sizes[epart[e]]++;
-  {
-    PetscInt *off;
-    PetscCall(PetscCalloc1(size + 1, &off));
-    for (PetscMPIInt r = 0; r < size; r++) off[r + 1] = off[r] + sizes[r];
-    for (idx_t e = 0; e < ne; e++) points[off[epart[e]]++] = (PetscInt)e;
-    PetscCall(PetscFree(off));
+  if (mesh->opt.partition_contact) {
+    PetscCall(PetscCalloc1(m->nv, &slave));
+    for (PetscInt s = 0; s < mesh->ncontact_set; s++) {
+      PetscInt set = -1;
+      for (PetscInt i = 0; i < nnames && set < 0; i++) {
+        PetscBool eq;
+        PetscCall(PetscStrcmp(names[i], mesh->contact_set[s], &eq));
+        if (eq) set = i;
+      }
+      if (set < 0) continue; /* reported by ContactSetUp */
+      if (!is_cell[set])
+        for (PetscInt k = 0; k < m->nsets[set].n; k++) slave[m->nsets[set].idx[k]] = PETSC_TRUE;
+      else
+        for (PetscInt k = 0; k < m->elsets[set - m->nnset].n; k++)
+          for (PetscInt a = 0; a < 8; a++) slave[m->conn[8 * m->elsets[set - m->nnset].idx[k] + a]] = PETSC_TRUE;
+    }
   }
-  PetscCall(PetscFree4(eptr, eind, epart, npart));
+  PetscCall(PetscMalloc1(m->ne, &epart));
+  PetscCall(MeshPartitionCells(m->ne, m->nv, m->conn, slave, size, epart, NULL));
+  for (PetscMPIInt r = 0; r < size; r++) sizes[r] = 0;
+  for (PetscInt e = 0; e < m->ne; e++) sizes[epart[e]]++;
+  PetscCall(PetscCalloc1(size + 1, &off));
+  for (PetscMPIInt r = 0; r < size; r++) off[r + 1] = off[r] + sizes[r];
+  for (PetscInt e = 0; e < m->ne; e++) points[off[epart[e]]++] = e;
+  PetscCall(PetscFree(off));
+  PetscCall(PetscFree(epart));
+  PetscCall(PetscFree(slave));
   PetscFunctionReturn(0);
 }
 
@@ -532,12 +542,15 @@ PetscErrorCode MeshCreate(MPI_Comm comm, const MeshOptions *opt, Mesh *pb)
       if (pb->rank == 0) {
         PetscCall(PetscMalloc1(md.ne, &points));
         PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-        ierr = PartitionMetis(&md, pb->size, sizes, points);
+        ierr = PartitionMetis(pb, &md, names, is_cell, nnames, pb->size, sizes, points);
         PetscCall(PetscPopErrorHandler());
       }
       PetscCall(AtritoRootError(pb->comm, ierr));
       PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSHELL));
       PetscCall(PetscPartitionerShellSetPartition(part, pb->size, sizes, points));
+      /* the vertices on part boundaries: owned by a rank chosen to balance them (PETSc's shared
+         point balancing) instead of always the highest-numbered rank around them */
+      if (opt->partition_contact) PetscCall(DMPlexSetPartitionBalance(dm, PETSC_TRUE));
       PetscCall(PetscFree(sizes));
       PetscCall(PetscFree(points));
     } else PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSIMPLE));
@@ -609,7 +622,7 @@ PetscErrorCode MeshCreate(MPI_Comm comm, const MeshOptions *opt, Mesh *pb)
     PetscInt *counts = NULL;
     if (pb->rank == 0) PetscCall(PetscMalloc1(pb->size, &counts));
     PetscCallMPI(MPI_Gather(&pb->nc, 1, MPIU_INT, counts, 1, MPIU_INT, 0, pb->comm));
-    PetscCall(PetscPrintf(pb->comm, "mesh: %" PetscInt_FMT " vertices, %" PetscInt_FMT " hexahedra; partition %s; cells per rank:", pb->nv_global, pb->ne_global, pb->size == 1 ? "none" : (opt->partition_metis ? "metis" : "simple")));
+    PetscCall(PetscPrintf(pb->comm, "mesh: %" PetscInt_FMT " vertices, %" PetscInt_FMT " hexahedra; partition %s; cells per rank:", pb->nv_global, pb->ne_global, pb->size == 1 ? "none" : (opt->partition_metis ? (opt->partition_contact ? "metis balancing cells and contact nodes" : "metis") : "simple")));
     if (pb->rank == 0)
       for (PetscMPIInt r = 0; r < pb->size; r++) PetscCall(PetscPrintf(PETSC_COMM_SELF, " %" PetscInt_FMT, counts[r]));
     PetscCall(PetscPrintf(pb->comm, "\n"));
@@ -632,6 +645,15 @@ PetscErrorCode MeshDestroy(Mesh *pb)
   PetscCall(PetscFree2(pb->vloc, pb->vrow));
   PetscCall(DMDestroy(&pb->dmr));
   PetscCall(DMDestroy(&pb->dm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MeshSetContactSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n <= 8, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "at most 8 contact sets are balanced by the partition, got %" PetscInt_FMT, n);
+  m->ncontact_set = n;
+  for (PetscInt i = 0; i < n; i++) PetscCall(PetscStrncpy(m->contact_set[i], sets[i], ATRITO_NAME_LEN));
   PetscFunctionReturn(0);
 }
 

@@ -84,6 +84,14 @@ PetscErrorCode MeshSetFromOptions(MPI_Comm comm, MeshOptions *o)
       PetscCall(PetscOptionsEList("-partition", "Cell partition", NULL, parts, 2, parts[0], &p, NULL));
       o->partition_metis = p == 0 ? PETSC_TRUE : PETSC_FALSE;
     }
+    {
+      const char *bal[] = {"cells", "contact", "PartitionBalance", "PB_", NULL};
+      PetscInt    b     = 0;
+      PetscBool   bset  = PETSC_FALSE;
+      PetscCall(PetscOptionsEList("-partition_balance", "What the METIS partition balances: the cells, or the cells and the contact slave nodes together", "doc/scaling-model.md", bal, 2, bal[0], &b, &bset));
+      o->partition_contact = b == 1 ? PETSC_TRUE : PETSC_FALSE;
+      PetscCheck(!(bset && o->partition_contact && !o->partition_metis), comm, PETSC_ERR_USER_INPUT, "-partition_balance contact needs -partition metis");
+    }
 
     o->given = (mtset || fileset) ? PETSC_TRUE : PETSC_FALSE;
   }
