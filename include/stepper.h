@@ -35,6 +35,7 @@ typedef struct {
   /* stages and curves of the process time */
   Stages    stages;
   PetscBool kinks, kinks_set; /* land on every kink, no extrapolation across one (-load_kinks) */
+  Predictor kink_predictor;   /* the start of a step at a kink: PREDICTOR_NONE or _TANGENT      */
   BCs      *bcs;
   Contact   contact;
 } Stepper;

@@ -22,6 +22,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->max_steps     = 100000;
   st->predictor     = PREDICTOR_AUTO;
   st->chatter_check = PETSC_TRUE;
+  st->kink_predictor = PREDICTOR_NONE;
   PetscOptionsBegin(comm, NULL, "Load stepping and Newton", NULL);
     {
       PetscInt steps = 10;
@@ -56,6 +57,12 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
 
   PetscCall(PetscOptionsBool("-contact_chatter_check", "Fail (and cut) a step whose last Newton iteration still changed the set of nodes in contact", NULL, st->chatter_check, &st->chatter_check, NULL));
   PetscCall(PetscOptionsBool("-load_kinks", "Land a step on every kink of every curve of the process time (tool paths and amplitudes, condition amplitudes) and never extrapolate across one (default: with stages or an amplitude curve)", NULL, st->kinks, &st->kinks, &st->kinks_set));
+  {
+    const char *kp[] = {"none", "tangent", "KinkPredictor", "KINK_", NULL};
+    PetscInt    p    = st->kink_predictor == PREDICTOR_TANGENT ? 1 : 0;
+    PetscCall(PetscOptionsEList("-load_kink_predictor", "Start of a step at a kink or a stage's start (-load_kinks, with -load_predictor auto or extrapolate): the committed state, or the tangent predictor", NULL, kp, 2, kp[p], &p, NULL));
+    st->kink_predictor = p ? PREDICTOR_TANGENT : PREDICTOR_NONE;
+  }
   PetscOptionsEnd();
   {
     PetscInt steps = (PetscInt)(1.0 / st->dt0 + 0.5);
@@ -357,8 +364,11 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       /* the extrapolation of the last two converged states only within one linear piece of every
          curve (with -load_kinks): at a kink or a stage's start, the tangent predictor (auto) or
          the committed state */
-      const PetscBool extrapolate = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0 && !AtKink(st, lam_c);
-      if (st->predictor == PREDICTOR_TANGENT || (st->predictor == PREDICTOR_AUTO && !extrapolate)) {
+      const PetscBool kink        = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0 && AtKink(st, lam_c);
+      const PetscBool extrapolate = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0 && !kink;
+      if (kink && st->kink_predictor == PREDICTOR_NONE) {
+        /* the committed state (U = Uc already) */
+      } else if (st->predictor == PREDICTOR_TANGENT || kink || (st->predictor == PREDICTOR_AUTO && !extrapolate)) {
         PetscBool ok;
         PetscCall(TangentPredictor(st, pb, R, W, lam_c, h, &ok));
         if (!ok) PetscCall(VecCopy(pb->Uc, pb->U));
