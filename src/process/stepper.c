@@ -22,7 +22,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->max_steps     = 100000;
   st->predictor     = PREDICTOR_AUTO;
   st->chatter_check = PETSC_TRUE;
-  st->kink_predictor = PREDICTOR_NONE;
+  st->kink_predictor = PREDICTOR_AUTO;
   PetscOptionsBegin(comm, NULL, "Load stepping and Newton", NULL);
     {
       PetscInt steps = 10;
@@ -58,10 +58,11 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   PetscCall(PetscOptionsBool("-contact_chatter_check", "Fail (and cut) a step whose last Newton iteration still changed the set of nodes in contact", NULL, st->chatter_check, &st->chatter_check, NULL));
   PetscCall(PetscOptionsBool("-load_kinks", "Land a step on every kink of every curve of the process time (tool paths and amplitudes, condition amplitudes) and never extrapolate across one (default: with stages or an amplitude curve)", NULL, st->kinks, &st->kinks, &st->kinks_set));
   {
-    const char *kp[] = {"none", "tangent", "KinkPredictor", "KINK_", NULL};
-    PetscInt    p    = st->kink_predictor == PREDICTOR_TANGENT ? 1 : 0;
-    PetscCall(PetscOptionsEList("-load_kink_predictor", "Start of a step at a kink or a stage's start (-load_kinks, with -load_predictor auto or extrapolate): the committed state, or the tangent predictor", NULL, kp, 2, kp[p], &p, NULL));
-    st->kink_predictor = p ? PREDICTOR_TANGENT : PREDICTOR_NONE;
+    const char     *kp[] = {"none", "tangent", "auto", "KinkPredictor", "KINK_", NULL};
+    const Predictor kv[] = {PREDICTOR_NONE, PREDICTOR_TANGENT, PREDICTOR_AUTO};
+    PetscInt        p    = st->kink_predictor == PREDICTOR_NONE ? 0 : (st->kink_predictor == PREDICTOR_TANGENT ? 1 : 2);
+    PetscCall(PetscOptionsEList("-load_kink_predictor", "Start of a step at a kink or a stage's start (-load_kinks, with -load_predictor auto or extrapolate): the committed state, the tangent predictor, or auto (of the two, the one with the smaller residual at the step's end)", NULL, kp, 3, kp[p], &p, NULL));
+    st->kink_predictor = kv[p];
   }
   PetscOptionsEnd();
   {
@@ -368,6 +369,25 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       const PetscBool extrapolate = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0 && !kink;
       if (kink && st->kink_predictor == PREDICTOR_NONE) {
         /* the committed state (U = Uc already) */
+      } else if (kink && st->kink_predictor == PREDICTOR_AUTO) {
+        /* the committed state or the tangent predictor, whichever leaves the smaller residual at
+           the step's end: a tool that retracts from a body that stays in contact is followed by
+           the tangent (from the committed state every node is open at the first iteration and
+           the contact-free Newton step overshoots), one the body separates from is not (the
+           linearised penalty would pull the body along with the tool) */
+        PetscBool ok;
+        PetscReal rc = PETSC_INFINITY, rt = PETSC_INFINITY;
+        pb->lambda = lam_t;
+        PetscCall(StepperFormFunction(snes, pb->Uc, R, st));
+        if (!pb->ndomain_err) PetscCall(VecNorm(R, NORM_2, &rc));
+        PetscCall(TangentPredictor(st, pb, R, W, lam_c, h, &ok));
+        if (ok) {
+          pb->lambda = lam_t;
+          PetscCall(StepperFormFunction(snes, pb->U, R, st));
+          if (!pb->ndomain_err) PetscCall(VecNorm(R, NORM_2, &rt));
+        }
+        if (!ok || !(rt < rc)) PetscCall(VecCopy(pb->Uc, pb->U));
+        pb->ndomain_err = 0;
       } else if (st->predictor == PREDICTOR_TANGENT || kink || (st->predictor == PREDICTOR_AUTO && !extrapolate)) {
         PetscBool ok;
         PetscCall(TangentPredictor(st, pb, R, W, lam_c, h, &ok));
