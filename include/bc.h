@@ -27,6 +27,8 @@ typedef struct {
   LoadCurve amp;                    /* a(t) (n = 0: t/T)                                */
   PetscBool always;                 /* active in every stage: a section constraint      */
   PetscBool active;                 /* active in the current stage                      */
+  PetscBool hold;                   /* -bc_<name>_hold: u = base + value * a(t), base the
+                                       displacement when a stage switches it on            */
   /* after BCSetUp */
   PetscInt   nset;   /* local dofs constrained by this condition */
   PetscInt  *loff;   /* their offsets in the local vector        */
@@ -36,6 +38,7 @@ typedef struct {
   PetscInt   nrow;   /* a condition that is not always active: its dofs on owned vertices */
   PetscInt  *grow;   /* their global rows                        */
   PetscReal *rval;   /* their values (times a(t))                */
+  PetscReal *base, *rbase; /* hold: the base of the nset local dofs and of the nrow rows */
 } BC;
 
 typedef struct {
@@ -44,6 +47,7 @@ typedef struct {
   PetscReal T;          /* total process time (the default amplitude t/T)             */
   PetscInt  nswitch;    /* conditions that are not active in every stage              */
   PetscInt *zrows;      /* work: the rows of the active ones on this rank              */
+  const Mesh *mesh;     /* after BCSetUp                                               */
 } BCs;
 
 PetscErrorCode BCSetFromOptions(MPI_Comm comm, BCs *bcs);
@@ -64,6 +68,12 @@ PetscReal BCNextKink(const BCs *bcs, PetscReal t);
    (nonzero pattern kept) */
 PetscErrorCode BCConstrainRows(const BCs *bcs, Vec U, Vec F, PetscReal t);
 PetscErrorCode BCConstrainJacobian(BCs *bcs, Mat P);
+/* a holding condition b (-bc_<name>_hold) switched on: its base is the displacement of the global
+   vector src at its dofs, copied into the global vector hold (the bases of all holding
+   conditions, for the checkpoint); src = hold: the bases from a checkpoint. Collective. */
+PetscErrorCode BCHold(BCs *bcs, PetscInt b, Vec src, Vec hold);
+/* whether any condition holds (-bc_<name>_hold) and is switched by stages */
+PetscBool BCHasHold(const BCs *bcs);
 /* reactions R[b][c] of every condition (all ranks), from the local residual Floc */
 PetscErrorCode BCReactions(const BCs *bcs, const Mesh *m, Vec Floc, PetscReal (*R)[3]);
 #endif

@@ -26,6 +26,7 @@ typedef struct {
 typedef struct {
   PetscInt  step, total_its, total_cuts, stage; /* stage: the index of the last step's stage */
   PetscReal lambda, dl, dl_prev;
+  Vec       hold; /* the bases of the holding conditions (bc.h; NULL: none), written and read */
 } CheckpointInfo;
 
 PetscErrorCode ResultsSetFromOptions(MPI_Comm comm, Results *res);

@@ -38,6 +38,7 @@ typedef struct {
   Predictor kink_predictor;   /* the start of a step at a kink: PREDICTOR_NONE or _TANGENT      */
   BCs      *bcs;
   Contact   contact;
+  Vec       Uhold;            /* the bases of the holding conditions (BCHold), or NULL         */
 } Stepper;
 
 /* -load_*, -newton_stall_*, -contact_chatter_check, the stages (-stage_*) */

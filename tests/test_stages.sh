@@ -3,7 +3,8 @@
 # lift, springback) runs to the end and the two rank counts agree to 1e-8; the stage column; steps
 # land exactly on every stage end and every kink of the curves; a condition inactive in a stage
 # has no reaction there; a restart in the middle of the second stage reproduces the uninterrupted
-# run; a tool removed while it carries a force is reported with that force; the kink case
+# run (also in the springback stage, where a condition holds dofs where the stage found them); a
+# tool removed while it carries a force is reported with that force; the kink case
 # cases/kink_retract.opts needs fewer cuts and iterations with -load_kinks than without; bad
 # stage and curve options are one-line errors naming the option.
 set -u
@@ -65,6 +66,26 @@ for f in sys.argv[1:]:
     print(("ok - " if good else "not ok - ") + f"{f.split('/')[-2]}: reaction of 'right' up to {before:.4g} in press/draw, {after:.3g} in springback where the stage leaves it inactive (left's |fz| {left:.3g})")
 PYEOF
 
+# 4b. the condition 'tip' (-bc_tip_hold, active only in springback) holds the x displacement of
+#     the end x = 4 where it was at the end of lift, and carries a reaction only there
+atrito 1 hold $CASE -output_interval 1 && $PY - "$OUT/hold" <<'PYEOF'
+import csv, sys, h5py, numpy as np
+d = sys.argv[1]
+rows = list(csv.DictReader(open(f"{d}/history.csv")))
+f = h5py.File(f"{d}/fields.h5", "r")
+X = f["mesh/coordinates"][:]
+end = np.abs(X[:, 0] - 4.0) < 1e-12
+step = {r["stage"]: int(r["step"]) for r in rows}  # the last step of each stage
+u_lift = f["steps/%06d/displacement" % step["lift"]][:][end, 0]
+u_sb = f["steps/%06d/displacement" % step["springback"]][:][end, 0]
+uz_lift = f["steps/%06d/displacement" % step["lift"]][:][end, 2]
+uz_sb = f["steps/%06d/displacement" % step["springback"]][:][end, 2]
+tip = [abs(float(r["tip_fx"])) for r in rows]
+good = (np.max(np.abs(u_lift)) > 1e-3 and np.max(np.abs(u_sb - u_lift)) < 1e-12 * np.max(np.abs(u_lift))
+        and max(tip[:-1]) < 1e-8 * tip[-1] and np.max(np.abs(uz_sb - uz_lift)) > 1e-4)
+print(("ok - " if good else "not ok - ") + f"tip holds u_x at x = 4 through springback ({np.max(np.abs(u_lift)):.4g}, change {np.max(np.abs(u_sb - u_lift)):.2g}) while u_z, released, springs by {np.max(np.abs(uz_sb - uz_lift)):.3g}; its reaction {tip[-1]:.4g} in springback, at most {max(tip[:-1]):.2g} before")
+PYEOF
+
 # 5. restart in the middle of the second stage (checkpoint of step 6, time 1.5 in 'draw')
 $MPI 1 $A $CASE -output_dir "$OUT/stop" -checkpoint_interval 3 -load_max_steps 7 </dev/null >"$OUT/stop1.log" 2>&1
 $MPI 1 $A $CASE -output_dir "$OUT/stop" -restart "$OUT/stop/checkpoint.h5" </dev/null >"$OUT/stop2.log" 2>&1 || not_ok "restart in stage draw failed"
@@ -73,6 +94,15 @@ for f in history.csv contact.csv; do $PY tests/compare_csv.py "$OUT/strip_np1/$f
 $MPI 1 $A $CASE -output_dir "$OUT/stop2r" -checkpoint_interval 3 -load_max_steps 7 </dev/null >"$OUT/stop3.log" 2>&1
 $MPI 2 $A $CASE -output_dir "$OUT/stop2r" -restart "$OUT/stop2r/checkpoint.h5" </dev/null >"$OUT/stop4.log" 2>&1 || not_ok "restart on 2 ranks failed"
 for f in history.csv contact.csv; do cmp8 "$OUT/strip_np1/$f" "$OUT/stop2r/$f" "1-rank checkpoint in stage draw continued on 2 ranks, $f, 1e-8"; done
+
+# 5b. restart in the springback stage (6 steps of 0.5 in it): the held displacement comes from the
+#     checkpoint
+SB="-stage_springback_duration 3 -stage_springback_steps 6"
+atrito 1 sbref $CASE $SB || true
+$MPI 1 $A $CASE $SB -output_dir "$OUT/sb" -checkpoint_interval 1 -load_max_steps 13 </dev/null >"$OUT/sb1.log" 2>&1
+$MPI 2 $A $CASE $SB -output_dir "$OUT/sb" -restart "$OUT/sb/checkpoint.h5" </dev/null >"$OUT/sb2.log" 2>&1 || not_ok "restart in springback failed"
+grep -q "restart from .*: step 13, time 4.5, stage springback" "$OUT/sb2.log" && ok "restart from step 13 in stage springback" || not_ok "restart in springback: $(grep -o 'restart from.*' "$OUT/sb2.log")"
+for f in history.csv contact.csv; do cmp8 "$OUT/sbref/$f" "$OUT/sb/$f" "restarted (np=2) in springback with a held condition against the uninterrupted run, $f, 1e-8"; done
 
 # 6. a tool removed while it carries a force: a warning with the force, the force of the last
 #    row of the stage before; none when a lift stage has released it
@@ -112,7 +142,7 @@ bad() { # bad EXPECTED NP ARGS...
   rm -rf "$OUT/bad"
 }
 bad "-stage_draw_tools: unknown tool 'die'" 1 $CASE -stage_draw_tools punch,die
-bad "-stage_springback_bcs: unknown condition 'base'" 2 $CASE -stage_springback_bcs base
+bad "-stage_springback_bcs: unknown condition 'base'" 2 $CASE -stage_springback_bcs left,base
 bad "-stage_lift_duration 0. must be > 0" 1 $CASE -stage_lift_duration 0
 bad "-stage_lift_duration -1. must be > 0" 2 $CASE -stage_lift_duration -1
 bad "-stage_press_steps 0 must be >= 1" 1 $CASE -stage_press_steps 0

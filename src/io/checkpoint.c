@@ -170,6 +170,12 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
   if (write) PetscCall(VertexValues(pb, problem->Uprev, own, PETSC_FALSE));
   PetscCall(OwnedRows(file, "displacement_previous", write, (IORows *)&pb->rv, 3, own, path));
   if (!write) PetscCall(VertexValues(pb, problem->Uprev, own, PETSC_TRUE));
+  /* the bases of the conditions that hold their dofs where a stage switched them on */
+  if (ci->hold) {
+    if (write) PetscCall(VertexValues(pb, ci->hold, own, PETSC_FALSE));
+    PetscCall(OwnedRows(file, "displacement_hold", write, (IORows *)&pb->rv, 3, own, path));
+    if (!write) PetscCall(VertexValues(pb, ci->hold, own, PETSC_TRUE));
+  }
   /* plastic history of every Gauss point */
   PetscCall(OwnedRows(file, "plastic_history", write, (IORows *)&pb->rc, problem->nhc, problem->hist_c, path));
   /* contact state per vertex (zero rows for the vertices that are not slave nodes) */

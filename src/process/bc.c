@@ -59,6 +59,7 @@ PetscErrorCode BCSetFromOptions(MPI_Comm comm, BCs *bcs)
     PetscCall(AtritoCheckFinite(comm, opt, v3, 3));
     for (int k = 0; k < 3; k++) bc->value[k] = v3[k];
     PetscCall(PetscOptionsString("-amplitude", "Amplitude a(t) of the values, a curve of the process time: t0,a0,t1,a1,... or a file of (t, a) lines (default: t/T, T the total time)", "include/loadcurve.h", curve, curve, sizeof(curve), &aset));
+    PetscCall(PetscOptionsBool("-hold", "When a stage switches the condition on, hold its dofs at the displacement they have then (plus value * a(t))", NULL, bc->hold, &bc->hold, NULL));
     bc->always = PETSC_TRUE;
     bc->active = PETSC_TRUE;
     PetscOptionsEnd();
@@ -152,6 +153,7 @@ PetscErrorCode BCSetUp(BCs *bcs, const Mesh *m)
       }
     PetscCall(PetscMalloc3(bd->nset, &bd->loff, bd->nset, &bd->val, bd->nown, &bd->own));
     PetscCall(PetscMalloc2(bd->nrow, &bd->grow, bd->nrow, &bd->rval));
+    PetscCall(PetscCalloc2(bd->nset, &bd->base, bd->nrow, &bd->rbase));
     bd->nset = bd->nown = bd->nrow = 0;
     for (PetscInt v = 0; v < m->nv; v++)
       if (mark[v]) {
@@ -173,6 +175,7 @@ PetscErrorCode BCSetUp(BCs *bcs, const Mesh *m)
   }
   PetscCall(PetscFree2(owner, mark));
   bcs->nswitch = 0;
+  bcs->mesh    = m;
   {
     PetscInt nz = 0;
     for (PetscInt b = 0; b < bcs->n; b++) {
@@ -190,6 +193,7 @@ PetscErrorCode BCDestroy(BCs *bcs)
   for (PetscInt b = 0; b < bcs->n; b++) {
     PetscCall(PetscFree3(bcs->bc[b].loff, bcs->bc[b].val, bcs->bc[b].own));
     PetscCall(PetscFree2(bcs->bc[b].grow, bcs->bc[b].rval));
+    PetscCall(PetscFree2(bcs->bc[b].base, bcs->bc[b].rbase));
     PetscCall(LoadCurveDestroy(&bcs->bc[b].amp));
   }
   PetscCall(PetscFree(bcs->zrows));
@@ -211,8 +215,44 @@ void BCApply(const BCs *bcs, PetscScalar *u, PetscReal t)
   for (PetscInt b = 0; b < bcs->n; b++) {
     const PetscReal a = BCAmplitude(bcs, b, t);
     if (!bcs->bc[b].active) continue; /* released: its dofs are free */
-    for (PetscInt k = 0; k < bcs->bc[b].nset; k++) u[bcs->bc[b].loff[k]] = a * bcs->bc[b].val[k];
+    for (PetscInt k = 0; k < bcs->bc[b].nset; k++) u[bcs->bc[b].loff[k]] = bcs->bc[b].base[k] + a * bcs->bc[b].val[k];
   }
+}
+
+PetscBool BCHasHold(const BCs *bcs)
+{
+  for (PetscInt b = 0; b < bcs->n; b++)
+    if (bcs->bc[b].hold && !bcs->bc[b].always) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+PetscErrorCode BCHold(BCs *bcs, PetscInt b, Vec src, Vec hold)
+{
+  BC                *bc = &bcs->bc[b];
+  Vec                L;
+  const PetscScalar *s, *l;
+  PetscScalar       *h;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(hold, &rstart, NULL));
+  if (src != hold) {
+    PetscCall(VecGetArrayRead(src, &s));
+    PetscCall(VecGetArray(hold, &h));
+    for (PetscInt k = 0; k < bc->nrow; k++) h[bc->grow[k] - rstart] = s[bc->grow[k] - rstart];
+    PetscCall(VecRestoreArray(hold, &h));
+    PetscCall(VecRestoreArrayRead(src, &s));
+  }
+  PetscCall(DMGetLocalVector(bcs->mesh->dm, &L));
+  PetscCall(DMGlobalToLocal(bcs->mesh->dm, hold, INSERT_VALUES, L));
+  PetscCall(VecGetArrayRead(L, &l));
+  for (PetscInt k = 0; k < bc->nset; k++) bc->base[k] = PetscRealPart(l[bc->loff[k]]);
+  PetscCall(VecRestoreArrayRead(L, &l));
+  PetscCall(DMRestoreLocalVector(bcs->mesh->dm, &L));
+  PetscCall(VecGetArrayRead(hold, &s));
+  for (PetscInt k = 0; k < bc->nrow; k++) bc->rbase[k] = PetscRealPart(s[bc->grow[k] - rstart]);
+  PetscCall(VecRestoreArrayRead(hold, &s));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode BCConstrainRows(const BCs *bcs, Vec U, Vec F, PetscReal t)
@@ -230,7 +270,7 @@ PetscErrorCode BCConstrainRows(const BCs *bcs, Vec U, Vec F, PetscReal t)
     const BC       *bc = &bcs->bc[b];
     const PetscReal a  = BCAmplitude(bcs, b, t);
     if (bc->always || !bc->active) continue;
-    for (PetscInt k = 0; k < bc->nrow; k++) f[bc->grow[k] - rstart] = u[bc->grow[k] - rstart] - a * bc->rval[k];
+    for (PetscInt k = 0; k < bc->nrow; k++) f[bc->grow[k] - rstart] = u[bc->grow[k] - rstart] - (bc->rbase[k] + a * bc->rval[k]);
   }
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscCall(VecRestoreArray(F, &f));

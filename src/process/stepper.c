@@ -151,7 +151,7 @@ static PetscErrorCode StepperFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *
 /* the start of stage k at the committed time t: its tools and conditions. A tool removed while it
    presses on the body is removed all the same (its force is released in the stage's first
    step), with a warning naming the force it carried. */
-static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool announce)
+static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool announce, PetscBool restart)
 {
   const Stage *s = &st->stages.s[k];
 
@@ -167,7 +167,13 @@ static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool
     }
     PetscCall(ContactSetToolPresent(st->contact, i, s->tool_on[i]));
   }
-  for (PetscInt b = 0; b < st->bcs->n; b++) st->bcs->bc[b].active = s->bc_on[b];
+  for (PetscInt b = 0; b < st->bcs->n; b++) {
+    BC *bc = &st->bcs->bc[b];
+    /* a holding condition switched on holds its dofs where they are now (on a restart: where the
+       checkpoint says it held them) */
+    if (bc->hold && !bc->always && s->bc_on[b] && (restart || !bc->active)) PetscCall(BCHold(st->bcs, b, restart ? st->Uhold : st->pb->Uc, st->Uhold));
+    bc->active = s->bc_on[b];
+  }
   if (announce && st->stages.given) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stage %s: time %g to %g, first increment %g\n", s->name, (double)s->t0, (double)s->t1, (double)s->dt0));
   PetscFunctionReturn(0);
 }
@@ -312,6 +318,13 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     PetscCall(SNESSetFunction(snes, NULL, StepperFormFunction, st));
     PetscCall(SNESSetJacobian(snes, NULL, NULL, StepperFormJacobian, st));
   }
+  ci.hold   = NULL;
+  st->Uhold = NULL;
+  if (BCHasHold(st->bcs)) {
+    PetscCall(VecDuplicate(pb->U, &st->Uhold));
+    PetscCall(VecZeroEntries(st->Uhold));
+    ci.hold = st->Uhold;
+  }
   if (res->restart[0]) {
     /* continue: the committed state of the checkpoint */
     PetscCall(CheckpointRead(pb, res->restart, &ci));
@@ -323,11 +336,12 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     total_cuts = ci.total_cuts;
     stage      = ci.stage;
     PetscCheck(stage >= 0 && stage < st->stages.n, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint is in stage %" PetscInt_FMT ", this case has %" PetscInt_FMT " (-stage_names)", res->restart, stage, st->stages.n);
-    PetscCall(EnterStage(st, stage, lam_c, PETSC_FALSE));
+    PetscCall(EnterStage(st, stage, lam_c, PETSC_FALSE, PETSC_TRUE));
     PetscCall(ResultsOpen(res, pb, &ci));
     PetscCall(PetscPrintf(pb->comm, "restart from %s: step %" PetscInt_FMT ", time %.6g, stage %s\n", res->restart, step, (double)lam_c, st->stages.s[stage].name));
   } else {
-    PetscCall(EnterStage(st, 0, 0.0, PETSC_TRUE));
+    PetscCall(VecZeroEntries(pb->Uc));
+    PetscCall(EnterStage(st, 0, 0.0, PETSC_TRUE, PETSC_FALSE));
     PetscCall(VecZeroEntries(pb->U));
     PetscCall(VecZeroEntries(pb->Uc));
     PetscCall(VecZeroEntries(pb->Uprev));
@@ -344,7 +358,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     PetscCheck(step < st->max_steps, pb->comm, PETSC_ERR_NOT_CONVERGED, "-load_max_steps %" PetscInt_FMT " reached at time %g", st->max_steps, (double)lam_c);
     if (StageAt(&st->stages, lam_c) != stage) { /* the stage ended: the next starts with its own increment */
       stage = StageAt(&st->stages, lam_c);
-      PetscCall(EnterStage(st, stage, lam_c, PETSC_TRUE));
+      PetscCall(EnterStage(st, stage, lam_c, PETSC_TRUE, PETSC_FALSE));
       dl = st->stages.s[stage].dt0;
     }
     const Stage *sg = &st->stages.s[stage];
@@ -504,5 +518,6 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(ResultsClose(res));
   PetscCall(VecDestroy(&R));
   PetscCall(VecDestroy(&W));
+  PetscCall(VecDestroy(&st->Uhold));
   PetscFunctionReturn(0);
 }
