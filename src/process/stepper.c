@@ -365,7 +365,10 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     next = NextLanding(st, stage, lam_c);
     for (;;) {
       h     = PetscMin(dl, next - lam_c);
-      lam_t = (next - lam_c - h < tol) ? next : lam_c + h; /* a step that reaches a stage end or a kink ends exactly on it */
+      /* a step that reaches a stage end or a kink ends exactly on it; with -load_kinks also one
+         that would leave less than 1 % of itself before it (no sliver of a step after it) */
+      if (st->kinks && next - lam_c - h < 0.01 * h) h = next - lam_c;
+      lam_t = (next - lam_c - h < tol) ? next : lam_c + h;
       pb->lambda  = lam_t;
       pb->cutback = PETSC_FALSE; /* a request of the predictor's evaluations counts for this attempt */
       PetscCall(VecCopy(pb->Uc, pb->U));
