@@ -54,7 +54,7 @@ PetscErrorCode BCSetFromOptions(MPI_Comm comm, BCs *bcs)
       for (PetscInt j = 0; j < k; j++) PetscCheck(bc->comp[j] != bc->comp[k], comm, PETSC_ERR_USER_INPUT, "%s: component listed twice", opt);
     }
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-bc_%s_values", bc->name));
-    PetscCall(PetscOptionsRealArray("-values", "Prescribed displacements at load 1 (ramped linearly)", NULL, v3, &nvals, &set));
+    PetscCall(PetscOptionsRealArray("-values", "Prescribed displacements, times the amplitude a(t) (default t/T: ramped linearly over the process)", NULL, v3, &nvals, &set));
     PetscCheck(!set || nvals == nc, comm, PETSC_ERR_USER_INPUT, "%s needs %" PetscInt_FMT " values (one per component), got %" PetscInt_FMT, opt, nc, nvals);
     PetscCall(AtritoCheckFinite(comm, opt, v3, 3));
     for (int k = 0; k < 3; k++) bc->value[k] = v3[k];
