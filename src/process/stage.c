@@ -103,7 +103,7 @@ PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_ste
     s->dt_min = PetscMin(s->dt_min, s->dt0);
     s->t0  = t;
     t += D;
-    s->t1 = k == n - 1 ? t : t; /* the stage ends where the next starts, exactly */
+    s->t1 = t; /* the stage ends where the next starts, exactly */
   }
   sg->T = t;
   PetscFunctionReturn(0);
