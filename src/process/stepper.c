@@ -338,7 +338,8 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     PetscCheck(stage >= 0 && stage < st->stages.n, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint is in stage %" PetscInt_FMT ", this case has %" PetscInt_FMT " (-stage_names)", res->restart, stage, st->stages.n);
     PetscCall(EnterStage(st, stage, lam_c, PETSC_FALSE, PETSC_TRUE));
     PetscCall(ResultsOpen(res, pb, &ci));
-    PetscCall(PetscPrintf(pb->comm, "restart from %s: step %" PetscInt_FMT ", time %.6g, stage %s\n", res->restart, step, (double)lam_c, st->stages.s[stage].name));
+    if (st->stages.given) PetscCall(PetscPrintf(pb->comm, "restart from %s: step %" PetscInt_FMT ", time %.6g, stage %s\n", res->restart, step, (double)lam_c, st->stages.s[stage].name));
+    else PetscCall(PetscPrintf(pb->comm, "restart from %s: step %" PetscInt_FMT ", load %.6g\n", res->restart, step, (double)lam_c));
   } else {
     PetscCall(VecZeroEntries(pb->Uc));
     PetscCall(EnterStage(st, 0, 0.0, PETSC_TRUE, PETSC_FALSE));
@@ -355,7 +356,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     PetscReal           lam_t, r0 = 0, h, next;
     const PetscBool     aug = ContactAugmented(pb->contact);
 
-    PetscCheck(step < st->max_steps, pb->comm, PETSC_ERR_NOT_CONVERGED, "-load_max_steps %" PetscInt_FMT " reached at time %g", st->max_steps, (double)lam_c);
+    PetscCheck(step < st->max_steps, pb->comm, PETSC_ERR_NOT_CONVERGED, "-load_max_steps %" PetscInt_FMT " reached at %s %g", st->max_steps, st->stages.given ? "time" : "load", (double)lam_c);
     if (StageAt(&st->stages, lam_c) != stage) { /* the stage ended: the next starts with its own increment */
       stage = StageAt(&st->stages, lam_c);
       PetscCall(EnterStage(st, stage, lam_c, PETSC_TRUE, PETSC_FALSE));
@@ -468,10 +469,14 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         FailureCause(st, pb, reason, buf, sizeof(buf));
         cuts++;
         total_cuts++;
+        /* without stages the time is the load, as the messages have always said */
+        const char *tw = st->stages.given ? "time" : "load";
+        char        sn[96] = "";
+        if (st->stages.given) PetscCall(PetscSNPrintf(sn, sizeof(sn), "stage %s, ", sg->name));
         PetscCheck(cuts <= st->max_cuts && h * st->cut >= sg->dt_min, pb->comm, PETSC_ERR_NOT_CONVERGED,
-                   "step %" PetscInt_FMT " failed at time %.6g (stage %s, increment %.3g) after %" PetscInt_FMT " cuts: %s; the results up to time %.6g are complete in %s",
-                   step + 1, (double)lam_t, sg->name, (double)h, cuts - 1, buf, (double)lam_c, res->dir);
-        PetscCall(PetscPrintf(pb->comm, "step %" PetscInt_FMT " at time %.6g: %s; retrying with increment %.3g\n", step + 1, (double)lam_t, buf, (double)(h * st->cut)));
+                   "step %" PetscInt_FMT " failed at %s %.6g (%sincrement %.3g) after %" PetscInt_FMT " cuts: %s; the results up to %s %.6g are complete in %s",
+                   step + 1, tw, (double)lam_t, sn, (double)h, cuts - 1, buf, tw, (double)lam_c, res->dir);
+        PetscCall(PetscPrintf(pb->comm, "step %" PetscInt_FMT " at %s %.6g: %s; retrying with increment %.3g\n", step + 1, tw, (double)lam_t, buf, (double)(h * st->cut)));
         dl = h * st->cut;
       }
     }
