@@ -1,6 +1,6 @@
-/* Results of a run, in -output_dir: history.csv (one row per converged step: load, Newton
+/* Results of a run, in -output_dir: history.csv (one row per converged step: process time, Newton
    iterations, residual norms, the reactions of the boundary conditions on their constrained
-   components), contact.csv (one row per step and tool), fields.h5 + fields.xmf (every
+   components, the stage), contact.csv (one row per step and tool), fields.h5 + fields.xmf (every
    -output_interval steps) and checkpoint.h5 (every -checkpoint_interval steps; -restart continues
    a run). Every file is written by rank 0 or collectively; rows are written whole and flushed. */
 #ifndef ATRITO_RESULTS_H
@@ -24,8 +24,9 @@ typedef struct {
 } Results;
 
 typedef struct {
-  PetscInt  step, total_its, total_cuts;
+  PetscInt  step, total_its, total_cuts, stage; /* stage: the index of the last step's stage */
   PetscReal lambda, dl, dl_prev;
+  Vec       hold; /* the bases of the holding conditions (bc.h; NULL: none), written and read */
 } CheckpointInfo;
 
 PetscErrorCode ResultsSetFromOptions(MPI_Comm comm, Results *res);
@@ -33,14 +34,14 @@ PetscErrorCode ResultsSetFromOptions(MPI_Comm comm, Results *res);
    truncated to its step; writes the mesh and, at a fresh start, the fields of step 0 */
 PetscErrorCode ResultsOpen(Results *res, Problem *pb, const CheckpointInfo *ci);
 /* the rows of a converged step, and its fields when due */
-PetscErrorCode ResultsWriteStep(Results *res, Problem *pb, PetscInt step, PetscReal lambda, PetscInt its, PetscReal r0, PetscReal r, PetscBool last);
+PetscErrorCode ResultsWriteStep(Results *res, Problem *pb, PetscInt step, PetscReal time, PetscInt its, PetscReal r0, PetscReal r, PetscBool last, const char *stage);
 PetscErrorCode ResultsClose(Results *res);
 
 /* history.c */
 PetscErrorCode HistoryOpen(Results *res, Problem *pb, PetscBool append);
-PetscErrorCode HistoryWrite(Results *res, Problem *pb, PetscInt step, PetscReal time, PetscInt its, PetscReal r0, PetscReal r);
+PetscErrorCode HistoryWrite(Results *res, Problem *pb, PetscInt step, PetscReal time, PetscInt its, PetscReal r0, PetscReal r, const char *stage);
 PetscErrorCode ContactHistoryOpen(Results *res, Problem *pb, PetscBool append);
-PetscErrorCode ContactHistoryWrite(Results *res, Problem *pb, PetscInt step, PetscReal time, PetscInt its);
+PetscErrorCode ContactHistoryWrite(Results *res, Problem *pb, PetscInt step, PetscReal time, PetscInt its, const char *stage);
 /* restart: keep the header and the rows of steps <= step of DIR/name; whether it existed */
 PetscErrorCode HistoryTruncate(MPI_Comm comm, const char *dir, const char *name, PetscInt step, PetscBool *existed);
 

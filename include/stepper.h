@@ -1,11 +1,17 @@
-/* The load stepper: the load parameter lambda from 0 to 1 in increments that grow after easy
-   steps and are cut after failed ones; per step the predictor, the Newton solve (with the frame
-   seeds of eqs 28-30 updated at every iteration and an optional stall test), the chattering
-   check, and on convergence the commit, the result rows, the fields and the checkpoint. */
+/* The load stepper: the process time t from 0 to T through the stages (stage.h; without stages
+   one stage, t = the load parameter from 0 to 1) in increments that grow after easy steps and are
+   cut after failed ones; a step lands exactly on every stage end and, with -load_kinks, on every
+   kink of every curve of the process time (tool paths and amplitudes, condition amplitudes), and
+   the extrapolation predictor is not used across a kink. Per step the predictor, the Newton solve
+   (with the frame seeds of eqs 28-30 updated at every iteration and an optional stall test), the
+   chattering check, and on convergence the commit, the result rows, the fields and the
+   checkpoint. At a stage's start the tools absent in it are removed (a warning names the force
+   a removed tool carried) and its conditions switched on or off. */
 #ifndef ATRITO_STEPPER_H
 #define ATRITO_STEPPER_H
 #include "problem.h"
 #include "results.h"
+#include "stage.h"
 
 typedef enum { PREDICTOR_NONE = 0, PREDICTOR_EXTRAPOLATE, PREDICTOR_TANGENT, PREDICTOR_AUTO } Predictor;
 
@@ -26,10 +32,20 @@ typedef struct {
   PetscInt  aug_loops;
   PetscBool aug_failed;
   PetscReal aug_pen, aug_dlam;
+  /* stages and curves of the process time */
+  Stages    stages;
+  PetscBool kinks, kinks_set; /* land on every kink, no extrapolation across one (-load_kinks) */
+  Predictor kink_predictor;   /* the start of a step at a kink: PREDICTOR_NONE or _TANGENT      */
+  BCs      *bcs;
+  Contact   contact;
+  Vec       Uhold;            /* the bases of the holding conditions (BCHold), or NULL         */
 } Stepper;
 
-/* -load_*, -newton_stall_*, -contact_chatter_check */
+/* -load_*, -newton_stall_*, -contact_chatter_check, the stages (-stage_*) */
 PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st);
+/* after every module has read its options: the stages' names against the tools and conditions,
+   the conditions that stages switch (before BCComputeMask), the total time */
+PetscErrorCode StepperSetUp(Stepper *st, BCs *bcs, Contact contact);
 /* runs the load steps from the start or from the checkpoint of -restart */
 PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res);
 #endif

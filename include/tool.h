@@ -7,6 +7,7 @@
 #define ATRITO_TOOL_H
 #include <petscsys.h>
 #include <petscviewer.h>
+#include "loadcurve.h"
 
 typedef enum { CURVE_LINE = 0, CURVE_ARC } CurveType;
 
@@ -95,9 +96,11 @@ typedef struct {
   char    name[PETSC_MAX_PATH_LEN];
   int     npatch;
   Patch  *patch;
-  double  motion[3];     /* translation at load parameter 1 (ramped linearly); zero for a fixed tool */
-  int     npath;         /* > 0: piecewise-linear path instead: points (load, dx, dy, dz)             */
+  double  motion[3];     /* translation: motion * a(t), a the amplitude (default t/T); zero: fixed   */
+  LoadCurve amp;         /* -tool_<name>_amplitude: a(t) (n = 0: the ramp t/T over the process)       */
+  int     npath;         /* > 0: piecewise-linear path instead: points (process time, dx, dy, dz)     */
   double  path[4 * 32];
+  int     absent;        /* the tool is absent in the current stage: it pairs no node (ToolProject)  */
   double  bbox[6];       /* reference bounding box of all patches: xmin, xmax, ymin, ymax, zmin, zmax */
 } Tool;
 
@@ -143,13 +146,20 @@ int PatchNormalDerivative(const Patch *p, const double shift[3], const double y[
    and value. */
 PetscErrorCode ToolsCreateFromOptions(MPI_Comm comm, PetscInt *ntools, Tool **tools);
 PetscErrorCode ToolsDestroy(PetscInt ntools, Tool **tools);
-/* The tool's translation at load parameter lambda: lambda * motion, or the piecewise-linear
-   interpolation of its path (-tool_<name>_path l0,dx,dy,dz, l1,dx,dy,dz, ... with 0 = l0 < l1 < ...
-   <= 1; held at the last point beyond it) */
-void ToolShift(const Tool *t, double lambda, double shift[3]);
-/* Path length travelled by the tool from load 0 to lambda: |lambda * motion|, or the sum of the
-   lengths of the path's linear pieces up to lambda */
-double ToolTravel(const Tool *t, double lambda);
+/* The total process time T (the sum of the stages' durations, 1 without stages) of the default
+   amplitude t/T; set once before the run (the stepper), 1 until then */
+void ToolsSetTotalTime(double T);
+/* The tool's translation at process time t: motion * a(t) with a its amplitude curve
+   (-tool_<name>_amplitude) or, without one, t/T (today's linear ramp when T = 1), or the
+   piecewise-linear interpolation of its path (-tool_<name>_path t0,dx,dy,dz, t1,dx,dy,dz, ... with
+   0 = t0 < t1 < ..., process times; held at the last point beyond it) */
+void ToolShift(const Tool *t, double time, double shift[3]);
+/* Path length travelled by the tool from time 0 to t: the sum of the lengths of the linear pieces
+   of its motion (of the path, or motion * a over the pieces of a) up to t */
+double ToolTravel(const Tool *t, double time);
+/* The first kink of the tool's motion strictly after t (a path point or a breakpoint of the
+   amplitude curve; PETSC_INFINITY if none) */
+double ToolNextKink(const Tool *t, double time);
 /* The tool: name, motion, bounding box, and one line per patch (ASCII viewer) */
 PetscErrorCode ToolView(const Tool *t, PetscViewer v);
 #endif

@@ -74,6 +74,9 @@ static PetscErrorCode Run(PetscBool *stop)
   } else {
     PetscCheck(mo.given, comm, PETSC_ERR_USER_INPUT, "no mesh: give a case (-options_file cases/<case>.opts) or -mesh_type / -mesh_file; usage: mpiexec -n N bin/atrito -options_file cases/<case>.opts [-option value ...]; -help lists the options");
     PetscCall(AtritoOptionsCheckUnknown(comm));
+    /* the stages against the tools and conditions; the conditions they switch are not section
+       constraints (before the mesh's constraints) */
+    PetscCall(StepperSetUp(&st, &bcs, contact));
 
     PetscCall(PetscLogStagePush(stage_mesh));
     {

@@ -53,6 +53,7 @@ run facets          bash tests/test_facets.sh
 run partition       bash tests/test_partition.sh
 run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh
+run stages          bash tests/test_stages.sh
 run eas-solver      bash tests/test_eas.sh
 run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh

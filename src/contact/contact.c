@@ -953,3 +953,37 @@ PetscErrorCode ContactGetSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_
   *sets = c->set;
   PetscFunctionReturn(0);
 }
+
+/* Stages (stage.h, stepper.c): read access to a tool, and tools that are absent in a stage */
+PetscErrorCode ContactGetTool(Contact contact, PetscInt t, const Tool **tool)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(t >= 0 && t < contact->ntools, contact->comm, PETSC_ERR_ARG_OUTOFRANGE, "tool %" PetscInt_FMT " of %" PetscInt_FMT, t, contact->ntools);
+  *tool = &contact->tools[t];
+  PetscFunctionReturn(0);
+}
+
+/* An absent tool pairs no node (ToolProject gives no point); the nodes in contact with it lose
+   their contact state (open, no force, no frame, no multipliers), committed and trial, and every
+   node is paired again. */
+PetscErrorCode ContactSetToolPresent(Contact contact, PetscInt t, PetscBool present)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(t >= 0 && t < contact->ntools, contact->comm, PETSC_ERR_ARG_OUTOFRANGE, "tool %" PetscInt_FMT " of %" PetscInt_FMT, t, contact->ntools);
+  contact->tools[t].absent = present ? 0 : 1;
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    ContactState *s = &contact->cst_c[i];
+    contact->pmemo[i].tool = -2;
+    if (present || s->tool != t) continue;
+    s->status    = CONTACT_OPEN;
+    s->tool      = -1;
+    s->patch     = -1;
+    s->has_frame = PETSC_FALSE;
+    s->gap       = PETSC_INFINITY;
+    s->tN = s->lN = 0;
+    s->tT[0] = s->tT[1] = s->lT[0] = s->lT[1] = 0;
+    for (int k = 0; k < 3; k++) s->f[k] = s->fT[k] = 0;
+    contact->cst_t[i] = *s;
+  }
+  PetscFunctionReturn(0);
+}

@@ -8,7 +8,7 @@
 #include <hdf5.h>
 #include "results.h"
 
-#define CKPT_VERSION 1
+#define CKPT_VERSION 2 /* 2: the stage */
 
 #define CheckH5(ret, ...) PetscCheck((ret) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, __VA_ARGS__)
 
@@ -129,8 +129,8 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
   const Mesh *pb = problem->mesh;
   const PetscInt ncs = ContactCheckpointWidth();
   PetscReal *own, *cst;
-  double     a[10];
-  const char *names[10] = {"format_version", "step", "lambda", "dl", "dl_prev", "total_its", "total_cuts", "vertices", "cells", "slave_nodes"};
+  double     a[11];
+  const char *names[11] = {"format_version", "step", "lambda", "dl", "dl_prev", "total_its", "total_cuts", "vertices", "cells", "slave_nodes", "stage"};
   PetscInt   nsg = ContactNumSlaves(problem->contact);
 
   PetscFunctionBeginUser;
@@ -146,10 +146,13 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
     a[7] = pb->nv_global;
     a[8] = pb->ne_global;
     a[9] = nsg;
+    a[10] = ci->stage;
   }
-  for (int k = 0; k < 10; k++) PetscCall(Attr(file, names[k], write, &a[k], path));
+  for (int k = 0; k < 11; k++) {
+    PetscCall(Attr(file, names[k], write, &a[k], path));
+    PetscCheck(write || k || a[0] == CKPT_VERSION, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: checkpoint format %d, this program reads format %d", path, (int)a[0], CKPT_VERSION);
+  }
   if (!write) {
-    PetscCheck(a[0] == CKPT_VERSION, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: checkpoint format %d, this program reads format %d", path, (int)a[0], CKPT_VERSION);
     PetscCheck(a[7] == pb->nv_global && a[8] == pb->ne_global && a[9] == nsg, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint has %" PetscInt_FMT " vertices, %" PetscInt_FMT " cells and %" PetscInt_FMT " slave nodes, this case %" PetscInt_FMT ", %" PetscInt_FMT " and %" PetscInt_FMT " (not the same mesh or case)", path, (PetscInt)a[7], (PetscInt)a[8], (PetscInt)a[9], pb->nv_global, pb->ne_global, nsg);
     ci->step       = (PetscInt)a[1];
     ci->lambda     = a[2];
@@ -157,6 +160,7 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
     ci->dl_prev    = a[4];
     ci->total_its  = (PetscInt)a[5];
     ci->total_cuts = (PetscInt)a[6];
+    ci->stage      = (PetscInt)a[10];
   }
   PetscCall(PetscMalloc2(3 * pb->nvo + 1, &own, ncs * pb->nvo + 1, &cst));
   /* displacements of the last two converged steps */
@@ -166,6 +170,12 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
   if (write) PetscCall(VertexValues(pb, problem->Uprev, own, PETSC_FALSE));
   PetscCall(OwnedRows(file, "displacement_previous", write, (IORows *)&pb->rv, 3, own, path));
   if (!write) PetscCall(VertexValues(pb, problem->Uprev, own, PETSC_TRUE));
+  /* the bases of the conditions that hold their dofs where a stage switched them on */
+  if (ci->hold) {
+    if (write) PetscCall(VertexValues(pb, ci->hold, own, PETSC_FALSE));
+    PetscCall(OwnedRows(file, "displacement_hold", write, (IORows *)&pb->rv, 3, own, path));
+    if (!write) PetscCall(VertexValues(pb, ci->hold, own, PETSC_TRUE));
+  }
   /* plastic history of every Gauss point */
   PetscCall(OwnedRows(file, "plastic_history", write, (IORows *)&pb->rc, problem->nhc, problem->hist_c, path));
   /* contact state per vertex (zero rows for the vertices that are not slave nodes) */

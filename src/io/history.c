@@ -1,9 +1,11 @@
 /* The CSV histories of a run (results.h), written by rank 0 in whole rows, flushed after each:
    a killed run leaves readable files.
 
-   history.csv: step, time (the load parameter), newton_its, residual_initial, residual_final,
-   then for every boundary condition and every component it constrains, <name>_f<x|y|z>: its
-   reaction, the force its supports exert on the body (bc.h).
+   history.csv: step, time (the process time; without stages the load parameter), newton_its,
+   residual_initial, residual_final, then for every boundary condition and every component it
+   constrains, <name>_f<x|y|z>: its reaction, the force its supports exert on the body (bc.h; zero
+   up to the Newton tolerance while a stage leaves the condition inactive), and last stage (the
+   name of the step's stage; "load" without stages).
 
    contact.csv, one row per step and tool: step, time, tool, travel (the displacement along the
    tool's direction: its motion at load 1, +z for a fixed tool), force (the force the tool exerts
@@ -13,7 +15,8 @@
    path), fx, fy, fz (the resultant force the tool exerts on the modelled part), force_normal and
    force_tangential (magnitudes of the normal and friction resultants), mean_penetration (of the
    pressed nodes), augmentations (Newton solves of the step with -contact_augmented, 0 without)
-   and multiplier_change (the largest change of a nodal multiplier in the step's last update). */
+   and multiplier_change (the largest change of a nodal multiplier in the step's last update), and
+   last stage (as in history.csv). */
 #include <stdio.h>
 #include <string.h>
 #include "results.h"
@@ -43,12 +46,12 @@ PetscErrorCode HistoryOpen(Results *res, Problem *pb, PetscBool append)
     for (int c = 0; c < 3; c++)
       for (PetscInt k = 0; k < bcs->bc[b].ncomp; k++)
         if (bcs->bc[b].comp[k] == c) fprintf(res->hist, ",%s_f%c", bcs->bc[b].name, comp_name[c]);
-  fprintf(res->hist, "\n");
+  fprintf(res->hist, ",stage\n");
   fflush(res->hist);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode HistoryWrite(Results *res, Problem *pb, PetscInt step, PetscReal time, PetscInt its, PetscReal r0, PetscReal r)
+PetscErrorCode HistoryWrite(Results *res, Problem *pb, PetscInt step, PetscReal time, PetscInt its, PetscReal r0, PetscReal r, const char *stage)
 {
   const BCs *bcs = pb->bcs;
   PetscReal  R[ATRITO_MAX_BC][3];
@@ -64,7 +67,7 @@ PetscErrorCode HistoryWrite(Results *res, Problem *pb, PetscInt step, PetscReal 
     for (int c = 0; c < 3; c++)
       for (PetscInt k = 0; k < bcs->bc[b].ncomp; k++)
         if (bcs->bc[b].comp[k] == c) len += snprintf(line + len, sizeof(line) - len, ",%.12e", (double)R[b][c]);
-  len += snprintf(line + len, sizeof(line) - len, "\n");
+  len += snprintf(line + len, sizeof(line) - len, ",%s\n", stage);
   fwrite(line, 1, len, res->hist);
   fflush(res->hist);
   PetscFunctionReturn(0);
@@ -77,12 +80,12 @@ PetscErrorCode ContactHistoryOpen(Results *res, Problem *pb, PetscBool append)
   if (!ContactNumTools(pb->contact)) PetscFunctionReturn(0);
   PetscCall(CsvOpen(res, pb, "contact.csv", append, &res->chist));
   if (pb->rank) PetscFunctionReturn(0);
-  if (!append) fprintf(res->chist, "step,time,tool,travel,force,force_full,newton_its,active,stick,slip,max_penetration,dx,dy,dz,path_length,fx,fy,fz,force_normal,force_tangential,mean_penetration,augmentations,multiplier_change\n");
+  if (!append) fprintf(res->chist, "step,time,tool,travel,force,force_full,newton_its,active,stick,slip,max_penetration,dx,dy,dz,path_length,fx,fy,fz,force_normal,force_tangential,mean_penetration,augmentations,multiplier_change,stage\n");
   fflush(res->chist);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactHistoryWrite(Results *res, Problem *pb, PetscInt step, PetscReal time, PetscInt its)
+PetscErrorCode ContactHistoryWrite(Results *res, Problem *pb, PetscInt step, PetscReal time, PetscInt its, const char *stage)
 {
   PetscFunctionBeginUser;
   for (PetscInt t = 0; t < ContactNumTools(pb->contact); t++) {
@@ -90,7 +93,7 @@ PetscErrorCode ContactHistoryWrite(Results *res, Problem *pb, PetscInt step, Pet
     PetscCall(ContactGetToolResult(pb->contact, t, time, &r));
     if (!pb->rank) {
       char      line[1024];
-      const int len = snprintf(line, sizeof(line), "%" PetscInt_FMT ",%.12g,%s,%.12g,%.12e,%.12e,%" PetscInt_FMT ",%d,%d,%d,%.6e,%.12g,%.12g,%.12g,%.12g,%.12e,%.12e,%.12e,%.12e,%.12e,%.6e,%d,%.6e\n", step, (double)time, r.name, r.travel, r.force, r.force * (double)ContactSymmetry(pb->contact), its, (int)r.active, (int)r.stick, (int)r.slip, r.max_pen, r.shift[0], r.shift[1], r.shift[2], r.path, r.f[0], r.f[1], r.f[2], r.fn, r.ft, r.mean_pen, (int)r.augmentations, r.dlambda);
+      const int len = snprintf(line, sizeof(line), "%" PetscInt_FMT ",%.12g,%s,%.12g,%.12e,%.12e,%" PetscInt_FMT ",%d,%d,%d,%.6e,%.12g,%.12g,%.12g,%.12g,%.12e,%.12e,%.12e,%.12e,%.12e,%.6e,%d,%.6e,%s\n", step, (double)time, r.name, r.travel, r.force, r.force * (double)ContactSymmetry(pb->contact), its, (int)r.active, (int)r.stick, (int)r.slip, r.max_pen, r.shift[0], r.shift[1], r.shift[2], r.path, r.f[0], r.f[1], r.f[2], r.fn, r.ft, r.mean_pen, (int)r.augmentations, r.dlambda, stage);
       fwrite(line, 1, (size_t)len, res->chist);
       fflush(res->chist);
     }

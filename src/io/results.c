@@ -84,11 +84,11 @@ PetscErrorCode ResultsOpen(Results *res, Problem *pb, const CheckpointInfo *ci)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ResultsWriteStep(Results *res, Problem *pb, PetscInt step, PetscReal lambda, PetscInt its, PetscReal r0, PetscReal r, PetscBool last)
+PetscErrorCode ResultsWriteStep(Results *res, Problem *pb, PetscInt step, PetscReal lambda, PetscInt its, PetscReal r0, PetscReal r, PetscBool last, const char *stage)
 {
   PetscFunctionBeginUser;
-  PetscCall(HistoryWrite(res, pb, step, lambda, its, r0, r));
-  if (ContactNumTools(pb->contact)) PetscCall(ContactHistoryWrite(res, pb, step, lambda, its)); /* collective: every rank */
+  PetscCall(HistoryWrite(res, pb, step, lambda, its, r0, r, stage));
+  if (ContactNumTools(pb->contact)) PetscCall(ContactHistoryWrite(res, pb, step, lambda, its, stage)); /* collective: every rank */
   if (res->of && (step % res->interval == 0 || last)) PetscCall(FieldsWriteStep(res, pb, step, lambda));
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,7 @@
-/* The load stepper (stepper.h): increments of the load parameter with growth and cut-back, the
-   predictor, the Newton solve with the frame recurrence at every iteration and the stall test,
-   the chattering check, the commit and the results of every converged step. */
+/* The load stepper (stepper.h): increments of the process time with growth and cut-back, the
+   stages and the kinks of the curves of the process time, the predictor, the Newton solve with the
+   frame recurrence at every iteration and the stall test, the chattering check, the commit and
+   the results of every converged step. */
 #include <math.h>
 #include <string.h>
 #include "stepper.h"
@@ -21,6 +22,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->max_steps     = 100000;
   st->predictor     = PREDICTOR_AUTO;
   st->chatter_check = PETSC_TRUE;
+  st->kink_predictor = PREDICTOR_AUTO;
   PetscOptionsBegin(comm, NULL, "Load stepping and Newton", NULL);
     {
       PetscInt steps = 10;
@@ -54,14 +56,132 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     PetscCheck(st->stall_factor > 0 && st->stall_factor <= 1, comm, PETSC_ERR_USER_INPUT, "-newton_stall_factor %g must lie in (0, 1]", (double)st->stall_factor);
 
   PetscCall(PetscOptionsBool("-contact_chatter_check", "Fail (and cut) a step whose last Newton iteration still changed the set of nodes in contact", NULL, st->chatter_check, &st->chatter_check, NULL));
+  PetscCall(PetscOptionsBool("-load_kinks", "Land a step on every kink of every curve of the process time (tool paths and amplitudes, condition amplitudes) and never extrapolate across one (default: with stages or an amplitude curve)", NULL, st->kinks, &st->kinks, &st->kinks_set));
+  {
+    const char     *kp[] = {"none", "tangent", "auto", "KinkPredictor", "KINK_", NULL};
+    const Predictor kv[] = {PREDICTOR_NONE, PREDICTOR_TANGENT, PREDICTOR_AUTO};
+    PetscInt        p    = st->kink_predictor == PREDICTOR_NONE ? 0 : (st->kink_predictor == PREDICTOR_TANGENT ? 1 : 2);
+    PetscCall(PetscOptionsEList("-load_kink_predictor", "Start of a step at a kink or a stage's start (-load_kinks, with -load_predictor auto or extrapolate): the committed state, the tangent predictor, or auto (of the two, the one with the smaller residual at the step's end)", NULL, kp, 3, kp[p], &p, NULL));
+    st->kink_predictor = kv[p];
+  }
   PetscOptionsEnd();
+  {
+    PetscInt steps = (PetscInt)(1.0 / st->dt0 + 0.5);
+    PetscCall(StagesSetFromOptions(comm, &st->stages, steps, st->dt_max, st->dt_min));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StepperSetUp(Stepper *st, BCs *bcs, Contact contact)
+{
+  PetscBool amp = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  st->bcs     = bcs;
+  st->contact = contact;
+  PetscCall(StagesSetUp(&st->stages, bcs, contact));
+  for (PetscInt b = 0; b < bcs->n; b++)
+    if (bcs->bc[b].amp.n > 0) amp = PETSC_TRUE;
+  for (PetscInt t = 0; t < ContactNumTools(contact); t++) {
+    const Tool *tl;
+    PetscCall(ContactGetTool(contact, t, &tl));
+    if (tl->amp.n > 0) amp = PETSC_TRUE;
+  }
+  if (!st->kinks_set) st->kinks = (st->stages.given || amp) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The first kink strictly after t of every curve of the process time: the conditions'
+   amplitudes, the tools' paths and amplitudes, and the force histories of force-driven tools.
+   A new kind of curve adds one line here. */
+static PetscReal NextKink(const Stepper *st, PetscReal t)
+{
+  PetscReal k = BCNextKink(st->bcs, t);
+  for (PetscInt i = 0; i < ContactNumTools(st->contact); i++) {
+    const Tool *tl;
+    if (ContactGetTool(st->contact, i, &tl)) continue;
+    k = PetscMin(k, (PetscReal)ToolNextKink(tl, t));
+  }
+  /* force-driven tools: k = PetscMin(k, ContactNextKink(st->contact, t)); */
+  return k;
+}
+
+/* the end of the next step at most: the stage's end, and with -load_kinks the next kink */
+static PetscReal NextLanding(const Stepper *st, PetscInt stage, PetscReal t)
+{
+  const PetscReal tol = 1e-12 * st->stages.T;
+  PetscReal       e   = st->stages.s[stage].t1;
+  if (st->kinks) e = PetscMin(e, NextKink(st, t + tol));
+  return e;
+}
+
+/* t is a kink of a curve or a stage's start (-load_kinks): the extrapolation of the last two
+   converged states would cross it */
+static PetscBool AtKink(const Stepper *st, PetscReal t)
+{
+  const PetscReal tol = 1e-12 * st->stages.T;
+  if (!st->kinks) return PETSC_FALSE;
+  for (PetscInt k = 0; k < st->stages.n; k++)
+    if (PetscAbsReal(t - st->stages.s[k].t0) <= tol) return PETSC_TRUE;
+  return NextKink(st, t - tol) <= t + tol ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* the residual and the Jacobian of the SNES with the rows of the conditions that stages switch
+   on and off (bc.h); installed only when a case has such conditions */
+static PetscErrorCode StepperFormFunction(SNES snes, Vec U, Vec F, void *ctx)
+{
+  Stepper *st = (Stepper *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(ProblemFormFunction(snes, U, F, st->pb));
+  if (!st->pb->ndomain_err) PetscCall(BCConstrainRows(st->bcs, U, F, st->pb->lambda));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode StepperFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx)
+{
+  Stepper *st = (Stepper *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(ProblemFormJacobian(snes, U, J, P, st->pb));
+  if (!st->pb->ndomain_err) PetscCall(BCConstrainJacobian(st->bcs, P));
+  PetscFunctionReturn(0);
+}
+
+/* the start of stage k at the committed time t: its tools and conditions. A tool removed while it
+   presses on the body is removed all the same (its force is released in the stage's first
+   step), with a warning naming the force it carried. */
+static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool announce, PetscBool restart)
+{
+  const Stage *s = &st->stages.s[k];
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < ContactNumTools(st->contact); i++) {
+    const Tool *tl;
+    PetscCall(ContactGetTool(st->contact, i, &tl));
+    if (announce && !s->tool_on[i] && !tl->absent) {
+      ContactToolResult r;
+      PetscCall(ContactGetToolResult(st->contact, i, t, &r));
+      if (r.active > 0)
+        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WARNING: stage %s removes tool %s while it carries a force of %.6e (fx %.6e, fy %.6e, fz %.6e; %" PetscInt_FMT " nodes pressed): released at once in the stage's first step (a stage in which the tool retracts releases it gradually)\n", s->name, tl->name, sqrt(r.f[0] * r.f[0] + r.f[1] * r.f[1] + r.f[2] * r.f[2]), r.f[0], r.f[1], r.f[2], r.active));
+    }
+    PetscCall(ContactSetToolPresent(st->contact, i, s->tool_on[i]));
+  }
+  for (PetscInt b = 0; b < st->bcs->n; b++) {
+    BC *bc = &st->bcs->bc[b];
+    /* a holding condition switched on holds its dofs where they are now (on a restart: where the
+       checkpoint says it held them) */
+    if (bc->hold && !bc->always && s->bc_on[b] && (restart || !bc->active)) PetscCall(BCHold(st->bcs, b, restart ? st->Uhold : st->pb->Uc, st->Uhold));
+    bc->active = s->bc_on[b];
+  }
+  if (announce && st->stages.given) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stage %s: time %g to %g, first increment %g\n", s->name, (double)s->t0, (double)s->t1, (double)s->dt0));
   PetscFunctionReturn(0);
 }
 
 /* Tangent predictor: U = Uc - J(Uc)^-1 [R(Uc, lam_c) + dR/dlam dl], the response of the committed
    state, linearised, to the increment of the prescribed displacements (the derivative along the
    load by a one-sided difference: it only seeds Newton, the Jacobian itself stays exact). */
-static PetscErrorCode TangentPredictor(Problem *pb, Vec R, Vec W, PetscReal lam_c, PetscReal dl, PetscBool *ok)
+static PetscErrorCode TangentPredictor(Stepper *st, Problem *pb, Vec R, Vec W, PetscReal lam_c, PetscReal dl, PetscBool *ok)
 {
   KSP                 ksp;
   KSPConvergedReason  kr;
@@ -73,11 +193,11 @@ static PetscErrorCode TangentPredictor(Problem *pb, Vec R, Vec W, PetscReal lam_
   PetscFunctionBeginUser;
   *ok = PETSC_FALSE;
   pb->lambda = lam_c;
-  PetscCall(ProblemFormJacobian(snes, pb->Uc, J, J, pb));
+  PetscCall(StepperFormJacobian(snes, pb->Uc, J, J, st));
   if (pb->ndomain_err) PetscFunctionReturn(0);
-  PetscCall(ProblemFormFunction(snes, pb->Uc, W, pb));
+  PetscCall(StepperFormFunction(snes, pb->Uc, W, st));
   pb->lambda = lam_c + eps * dl;
-  PetscCall(ProblemFormFunction(snes, pb->Uc, R, pb));
+  PetscCall(StepperFormFunction(snes, pb->Uc, R, st));
   if (pb->ndomain_err) PetscFunctionReturn(0);
   /* R <- W + (R - W)/eps */
   PetscCall(VecAXPBY(R, 1.0 - 1.0 / eps, 1.0 / eps, W));
@@ -176,7 +296,9 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   KSP            ksp;
   PC             pc;
   Vec            R, W;
-  PetscReal      lam_c = 0, dl = st->dt0, dl_prev = 0, rhist[256];
+  PetscReal      lam_c = 0, dl = st->stages.s[0].dt0, dl_prev = 0, rhist[256];
+  PetscInt       stage = 0;
+  const PetscReal T = st->stages.T, tol = 1e-12 * T;
   PetscInt       itshist[256], step = 0, total_its = 0, total_cuts = 0;
   CheckpointInfo ci;
   PetscLogDouble t0, t1;
@@ -192,6 +314,17 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(SNESSetConvergenceHistory(snes, rhist, itshist, 256, PETSC_TRUE));
   PetscCall(SNESSetUpdate(snes, NewtonUpdate));
   PetscCall(SNESSetConvergenceTest(snes, NewtonConverged, st, NULL));
+  if (st->bcs->nswitch) { /* conditions that stages switch: their rows (bc.h) */
+    PetscCall(SNESSetFunction(snes, NULL, StepperFormFunction, st));
+    PetscCall(SNESSetJacobian(snes, NULL, NULL, StepperFormJacobian, st));
+  }
+  ci.hold   = NULL;
+  st->Uhold = NULL;
+  if (BCHasHold(st->bcs)) {
+    PetscCall(VecDuplicate(pb->U, &st->Uhold));
+    PetscCall(VecZeroEntries(st->Uhold));
+    ci.hold = st->Uhold;
+  }
   if (res->restart[0]) {
     /* continue: the committed state of the checkpoint */
     PetscCall(CheckpointRead(pb, res->restart, &ci));
@@ -201,9 +334,15 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     dl_prev    = ci.dl_prev;
     total_its  = ci.total_its;
     total_cuts = ci.total_cuts;
+    stage      = ci.stage;
+    PetscCheck(stage >= 0 && stage < st->stages.n, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint is in stage %" PetscInt_FMT ", this case has %" PetscInt_FMT " (-stage_names)", res->restart, stage, st->stages.n);
+    PetscCall(EnterStage(st, stage, lam_c, PETSC_FALSE, PETSC_TRUE));
     PetscCall(ResultsOpen(res, pb, &ci));
-    PetscCall(PetscPrintf(pb->comm, "restart from %s: step %" PetscInt_FMT ", load %.6g\n", res->restart, step, (double)lam_c));
+    if (st->stages.given) PetscCall(PetscPrintf(pb->comm, "restart from %s: step %" PetscInt_FMT ", time %.6g, stage %s\n", res->restart, step, (double)lam_c, st->stages.s[stage].name));
+    else PetscCall(PetscPrintf(pb->comm, "restart from %s: step %" PetscInt_FMT ", load %.6g\n", res->restart, step, (double)lam_c));
   } else {
+    PetscCall(VecZeroEntries(pb->Uc));
+    PetscCall(EnterStage(st, 0, 0.0, PETSC_TRUE, PETSC_FALSE));
     PetscCall(VecZeroEntries(pb->U));
     PetscCall(VecZeroEntries(pb->Uc));
     PetscCall(VecZeroEntries(pb->Uprev));
@@ -211,16 +350,26 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     PetscCall(ResultsOpen(res, pb, NULL));
   }
 
-  while (lam_c < 1.0 - 1e-12) {
+  while (lam_c < T - tol) {
     SNESConvergedReason reason;
     PetscInt            its = 0, its_max = 0, cuts = 0, nres;
-    PetscReal           lam_t, r0 = 0;
+    PetscReal           lam_t, r0 = 0, h, next;
     const PetscBool     aug = ContactAugmented(pb->contact);
 
-    PetscCheck(step < st->max_steps, pb->comm, PETSC_ERR_NOT_CONVERGED, "-load_max_steps %" PetscInt_FMT " reached at load %g", st->max_steps, (double)lam_c);
+    PetscCheck(step < st->max_steps, pb->comm, PETSC_ERR_NOT_CONVERGED, "-load_max_steps %" PetscInt_FMT " reached at %s %g", st->max_steps, st->stages.given ? "time" : "load", (double)lam_c);
+    if (StageAt(&st->stages, lam_c) != stage) { /* the stage ended: the next starts with its own increment */
+      stage = StageAt(&st->stages, lam_c);
+      PetscCall(EnterStage(st, stage, lam_c, PETSC_TRUE, PETSC_FALSE));
+      dl = st->stages.s[stage].dt0;
+    }
+    const Stage *sg = &st->stages.s[stage];
+    next = NextLanding(st, stage, lam_c);
     for (;;) {
-      dl    = PetscMin(dl, 1.0 - lam_c);
-      lam_t = (1.0 - lam_c - dl < 1e-12) ? 1.0 : lam_c + dl; /* the last step ends exactly at 1 */
+      h     = PetscMin(dl, next - lam_c);
+      /* a step that reaches a stage end or a kink ends exactly on it; with -load_kinks also one
+         that would leave less than 1 % of itself before it (no sliver of a step after it) */
+      if (st->kinks && next - lam_c - h < 0.01 * h) h = next - lam_c;
+      lam_t = (next - lam_c - h < tol) ? next : lam_c + h;
       pb->lambda  = lam_t;
       pb->cutback = PETSC_FALSE; /* a request of the predictor's evaluations counts for this attempt */
       PetscCall(VecCopy(pb->Uc, pb->U));
@@ -231,12 +380,37 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       PetscCall(PCReset(pc));
       /* frame seeds from the committed state (a retry starts again from the committed frames) */
       PetscCall(SeedFrames(pb, pb->Uc, lam_c));
-      const PetscBool extrapolate = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0;
-      if (st->predictor == PREDICTOR_TANGENT || (st->predictor == PREDICTOR_AUTO && !extrapolate)) {
+      /* the extrapolation of the last two converged states only within one linear piece of every
+         curve (with -load_kinks): at a kink or a stage's start, the tangent predictor (auto) or
+         the committed state */
+      const PetscBool kink        = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0 && AtKink(st, lam_c);
+      const PetscBool extrapolate = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0 && !kink;
+      if (kink && st->kink_predictor == PREDICTOR_NONE) {
+        /* the committed state (U = Uc already) */
+      } else if (kink && st->kink_predictor == PREDICTOR_AUTO) {
+        /* the committed state or the tangent predictor, whichever leaves the smaller residual at
+           the step's end: a tool that retracts from a body that stays in contact is followed by
+           the tangent (from the committed state every node is open at the first iteration and
+           the contact-free Newton step overshoots), one the body separates from is not (the
+           linearised penalty would pull the body along with the tool) */
         PetscBool ok;
-        PetscCall(TangentPredictor(pb, R, W, lam_c, dl, &ok));
+        PetscReal rc = PETSC_INFINITY, rt = PETSC_INFINITY;
+        pb->lambda = lam_t;
+        PetscCall(StepperFormFunction(snes, pb->Uc, R, st));
+        if (!pb->ndomain_err) PetscCall(VecNorm(R, NORM_2, &rc));
+        PetscCall(TangentPredictor(st, pb, R, W, lam_c, h, &ok));
+        if (ok) {
+          pb->lambda = lam_t;
+          PetscCall(StepperFormFunction(snes, pb->U, R, st));
+          if (!pb->ndomain_err) PetscCall(VecNorm(R, NORM_2, &rt));
+        }
+        if (!ok || !(rt < rc)) PetscCall(VecCopy(pb->Uc, pb->U));
+        pb->ndomain_err = 0;
+      } else if (st->predictor == PREDICTOR_TANGENT || kink || (st->predictor == PREDICTOR_AUTO && !extrapolate)) {
+        PetscBool ok;
+        PetscCall(TangentPredictor(st, pb, R, W, lam_c, h, &ok));
         if (!ok) PetscCall(VecCopy(pb->Uc, pb->U));
-      } else if (extrapolate) PetscCall(VecAXPBYPCZ(pb->U, -dl / dl_prev, dl / dl_prev, 1.0, pb->Uprev, pb->Uc));
+      } else if (extrapolate) PetscCall(VecAXPBYPCZ(pb->U, -h / dl_prev, h / dl_prev, 1.0, pb->Uprev, pb->Uc));
       pb->lambda     = lam_t;
       pb->bad_status = 0;
       PetscCall(SeedFrames(pb, pb->U, lam_t));
@@ -295,21 +469,25 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         FailureCause(st, pb, reason, buf, sizeof(buf));
         cuts++;
         total_cuts++;
-        PetscCheck(cuts <= st->max_cuts && dl * st->cut >= st->dt_min, pb->comm, PETSC_ERR_NOT_CONVERGED,
-                   "step %" PetscInt_FMT " failed at load %.6g (increment %.3g) after %" PetscInt_FMT " cuts: %s; the results up to load %.6g are complete in %s",
-                   step + 1, (double)lam_t, (double)dl, cuts - 1, buf, (double)lam_c, res->dir);
-        PetscCall(PetscPrintf(pb->comm, "step %" PetscInt_FMT " at load %.6g: %s; retrying with increment %.3g\n", step + 1, (double)lam_t, buf, (double)(dl * st->cut)));
-        dl *= st->cut;
+        /* without stages the time is the load, as the messages have always said */
+        const char *tw = st->stages.given ? "time" : "load";
+        char        sn[96] = "";
+        if (st->stages.given) PetscCall(PetscSNPrintf(sn, sizeof(sn), "stage %s, ", sg->name));
+        PetscCheck(cuts <= st->max_cuts && h * st->cut >= sg->dt_min, pb->comm, PETSC_ERR_NOT_CONVERGED,
+                   "step %" PetscInt_FMT " failed at %s %.6g (%sincrement %.3g) after %" PetscInt_FMT " cuts: %s; the results up to %s %.6g are complete in %s",
+                   step + 1, tw, (double)lam_t, sn, (double)h, cuts - 1, buf, tw, (double)lam_c, res->dir);
+        PetscCall(PetscPrintf(pb->comm, "step %" PetscInt_FMT " at %s %.6g: %s; retrying with increment %.3g\n", step + 1, tw, (double)lam_t, buf, (double)(h * st->cut)));
+        dl = h * st->cut;
       }
     }
     /* commit the trial states of that evaluation */
     PetscCall(ProblemCommit(pb, lam_t));
-    dl_prev = dl;
+    dl_prev = h;
     lam_c   = lam_t;
     step++;
     total_its += its;
     PetscCall(SNESGetConvergenceHistory(snes, NULL, NULL, &nres));
-    PetscCall(ResultsWriteStep(res, pb, step, lam_c, its, r0, rhist[PetscMax(nres - 1, 0)], lam_c >= 1.0 - 1e-12 ? PETSC_TRUE : PETSC_FALSE));
+    PetscCall(ResultsWriteStep(res, pb, step, lam_c, its, r0, rhist[PetscMax(nres - 1, 0)], lam_c >= T - tol ? PETSC_TRUE : PETSC_FALSE, sg->name));
     PetscCall(PetscTime(&t1));
     {
       char cline[160] = "";
@@ -326,12 +504,13 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         if (aug) PetscCall(PetscSNPrintf(cline, sizeof(cline), "  penetration %.3e mean %.3e  augmentations %" PetscInt_FMT "  multiplier change %.3e", (double)pmax, (double)(npr ? psum / npr : 0), st->aug_loops, (double)st->aug_dlam));
         else PetscCall(PetscSNPrintf(cline, sizeof(cline), "  penetration %.3e mean %.3e", (double)pmax, (double)(npr ? psum / npr : 0)));
       }
-      PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s%s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0, cline));
+      PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s%s  stage %s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0, cline, sg->name));
     }
     /* growth: on the Newton iterations of the hardest solve of the step (all of them without
        augmentation) */
-    if (its_max <= st->grow_its) dl = PetscMin(dl * st->grow, st->dt_max);
-    if (res->checkpoint_interval > 0 && (step % res->checkpoint_interval == 0 || lam_c >= 1.0 - 1e-12)) {
+    if (its_max <= st->grow_its) dl = PetscMin(dl * st->grow, sg->dt_max);
+    if (res->checkpoint_interval > 0 && (step % res->checkpoint_interval == 0 || lam_c >= T - tol)) {
+      ci.stage      = stage;
       ci.step       = step;
       ci.lambda     = lam_c;
       ci.dl         = dl;
@@ -347,5 +526,6 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(ResultsClose(res));
   PetscCall(VecDestroy(&R));
   PetscCall(VecDestroy(&W));
+  PetscCall(VecDestroy(&st->Uhold));
   PetscFunctionReturn(0);
 }

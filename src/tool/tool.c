@@ -263,6 +263,8 @@ static int ToolProjectImpl(const Tool *t, const double shift[3], const double y[
   double         yr[3], bd = 0.0, tol = 0.0;
   PatchCandidate bi = {0.0, 0.0, {0.0, 0.0, 0.0}, HUGE_VAL, 0}, ba = bi, c, best;
   int            ki = -1, ka = -1, kbest;
+
+  if (t->absent) return 1; /* a tool absent in the current stage gives no point */
   for (int i = 0; i < 3; i++) {
     yr[i]          = y[i] - shift[i]; /* work in the reference position */
     const double o = fmax(t->bbox[2 * i] - yr[i], yr[i] - t->bbox[2 * i + 1]);
@@ -382,6 +384,13 @@ void PatchBoxSampled(const Patch *p, double b[6])
 /* motion                                                                                       */
 /* ------------------------------------------------------------------------------------------ */
 
+static double tool_total_time = 1.0; /* T of the default amplitude t/T (ToolsSetTotalTime) */
+
+void ToolsSetTotalTime(double T) { tool_total_time = T > 0 ? T : 1.0; }
+
+/* the amplitude of a tool's motion at time t: its curve, or the ramp t/T */
+static double ToolAmplitude(const Tool *t, double time) { return t->amp.n > 0 ? (double)LoadCurveEval(&t->amp, time) : time / tool_total_time; }
+
 void ToolShift(const Tool *t, double lambda, double shift[3])
 {
   if (t->npath > 0) {
@@ -396,7 +405,10 @@ void ToolShift(const Tool *t, double lambda, double shift[3])
     for (int i = 0; i < 3; i++) shift[i] = (1 - w) * P[4 * k + 1 + i] + w * P[4 * (k + 1) + 1 + i];
     return;
   }
-  for (int i = 0; i < 3; i++) shift[i] = lambda * t->motion[i];
+  {
+    const double a = ToolAmplitude(t, lambda);
+    for (int i = 0; i < 3; i++) shift[i] = a * t->motion[i];
+  }
 }
 
 double ToolTravel(const Tool *t, double lambda)
@@ -414,8 +426,30 @@ double ToolTravel(const Tool *t, double lambda)
     ToolShift(t, lambda, sh);
     return s + sqrt(Dist2(sh, &P[4 * k + 1]));
   }
+  if (t->amp.n > 0) { /* |motion| times the variation of the amplitude up to t */
+    double s = 0.0, ap = ToolAmplitude(t, 0.0);
+    for (PetscInt k = 0; k < t->amp.n && t->amp.t[k] < lambda; k++) {
+      if (t->amp.t[k] <= 0) continue;
+      const double a = ToolAmplitude(t, t->amp.t[k]);
+      s += fabs(a - ap);
+      ap = a;
+    }
+    s += fabs(ToolAmplitude(t, lambda) - ap);
+    return s * Norm(t->motion);
+  }
   ToolShift(t, lambda, sh);
   return Norm(sh);
+}
+
+double ToolNextKink(const Tool *t, double time)
+{
+  if (t->npath > 0) {
+    for (int k = 0; k < t->npath; k++)
+      if (t->path[4 * k] > time) return t->path[4 * k];
+    return PETSC_INFINITY;
+  }
+  if (t->amp.n > 0) return (double)LoadCurveNextKink(&t->amp, time);
+  return PETSC_INFINITY;
 }
 
 PetscErrorCode ToolView(const Tool *t, PetscViewer v)
@@ -591,18 +625,26 @@ static PetscErrorCode ToolSetFromOptions(PetscOptionItems *PetscOptionsObject, T
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(pre, sizeof(pre), "-tool_%s", t->name));
-  PetscCall(ToolOptionReals(PetscOptionsObject, "-motion", "Translation at load 1, ramped linearly with the load (default: fixed)", 3, mo, PETSC_FALSE, NULL));
+  PetscCall(ToolOptionReals(PetscOptionsObject, "-motion", "Translation motion * a(t): at the end of the process with the default amplitude a(t) = t/T (default: fixed)", 3, mo, PETSC_FALSE, NULL));
   for (int i = 0; i < 3; i++) t->motion[i] = mo[i];
+  {
+    char      curve[PETSC_MAX_PATH_LEN] = "";
+    PetscBool aset;
+    PetscCall(ToolOptionFullName(PetscOptionsObject, "-amplitude", full, sizeof(full)));
+    PetscCall(PetscOptionsString("-amplitude", "Amplitude a(t) of -motion, a curve of the process time: t0,a0,t1,a1,... or a file of (t, a) lines (default: t/T, T the total time)", "include/loadcurve.h", curve, curve, sizeof(curve), &aset));
+    if (aset) PetscCall(LoadCurveParse(comm, full, curve, &t->amp));
+  }
   /* piecewise-linear path: (load, dx, dy, dz) points */
   PetscCall(ToolOptionFullName(PetscOptionsObject, "-path", full, sizeof(full)));
-  PetscCall(PetscOptionsRealArray("-path", "Instead of -motion: translation l0,dx,dy,dz,l1,... at loads 0 = l0 < l1 < ... <= 1 (at most 32 points), linear in between", NULL, t->path, &cnt, &pset));
+  PetscCall(PetscOptionsRealArray("-path", "Instead of -motion: translation t0,dx,dy,dz,t1,... at process times 0 = t0 < t1 < ... (at most 32 points), linear in between", NULL, t->path, &cnt, &pset));
   if (pset) {
     PetscCheck(cnt >= 8 && cnt % 4 == 0, comm, PETSC_ERR_USER_INPUT, "%s: needs groups of 4 values (load, dx, dy, dz), at least 2 points and at most 32; got %" PetscInt_FMT " values", full, cnt);
     t->npath = (int)(cnt / 4);
-    PetscCheck(t->path[0] == 0, comm, PETSC_ERR_USER_INPUT, "%s: the first point must be at load 0, not %g", full, (double)t->path[0]);
+    PetscCheck(t->path[0] == 0, comm, PETSC_ERR_USER_INPUT, "%s: the first point must be at time 0, not %g", full, (double)t->path[0]);
     for (int q = 0; q < cnt; q++) PetscCheck(!PetscIsInfOrNanReal(t->path[q]), comm, PETSC_ERR_USER_INPUT, "%s: value %g is not a finite number", full, (double)t->path[q]);
-    for (int q = 1; q < t->npath; q++) PetscCheck(t->path[4 * q] > t->path[4 * (q - 1)] && t->path[4 * q] <= 1, comm, PETSC_ERR_USER_INPUT, "%s: the loads must increase within [0, 1] (point %d at %g)", full, q, (double)t->path[4 * q]);
+    for (int q = 1; q < t->npath; q++) PetscCheck(t->path[4 * q] > t->path[4 * (q - 1)], comm, PETSC_ERR_USER_INPUT, "%s: the times must increase (point %d at %g)", full, q, (double)t->path[4 * q]);
     PetscCheck(mo[0] == 0 && mo[1] == 0 && mo[2] == 0, comm, PETSC_ERR_USER_INPUT, "%s and %s_motion are exclusive", full, pre);
+    PetscCheck(t->amp.n == 0, comm, PETSC_ERR_USER_INPUT, "%s and %s_amplitude are exclusive (the path's times are process times)", full, pre);
   }
   /* the surface from a file: a meshed surface (one facets patch), or a tool file of patches (read
      after this block, ToolsCreateFromOptions) */
@@ -818,6 +860,7 @@ PetscErrorCode ToolsDestroy(PetscInt ntools, Tool **tools)
     if (t->patch)
       for (int j = 0; j < t->npatch; j++) PetscCall(PatchDestroy(&t->patch[j]));
     PetscCall(PetscFree(t->patch));
+    PetscCall(LoadCurveDestroy(&t->amp));
   }
   PetscCall(PetscFree(*tools));
   PetscFunctionReturn(0);

@@ -1,7 +1,7 @@
 """contact_columns.py RUN HISTORY_COLUMNS PATH MU LABEL
 
 history.csv of RUN must carry exactly the reaction columns HISTORY_COLUMNS (comma-separated) after
-its five fixed columns. contact.csv (one tool) must give: dx, dy, dz = the tool's piecewise-linear
+its five fixed columns, and last the column stage ("load" without stages; contact.csv too). contact.csv (one tool) must give: dx, dy, dz = the tool's piecewise-linear
 PATH ("load,dx,dy,dz;..."), path_length = the length travelled along it, force = (fx, fy, fz) . dir
 with dir the motion at load 1, force_normal and force_tangential the magnitudes of the normal and
 tangential resultants for a tool whose normal is +-z at every node in contact (plane; or, for the
@@ -15,8 +15,10 @@ c = list(csv.DictReader(open(f"{run}/contact.csv")))
 pts = [[float(x) for x in p.split(",")] for p in path.split(";")]
 errs = []
 fixed = ["step", "time", "newton_its", "residual_initial", "residual_final"]
-if list(h[0].keys()) != fixed + hcols:
-    errs.append(f"history columns {list(h[0].keys())[5:]} != {hcols}")
+if list(h[0].keys()) != fixed + hcols + ["stage"]:
+    errs.append(f"history columns {list(h[0].keys())[5:]} != {hcols + ['stage']}")
+if list(c[0].keys())[-1] != "stage" or any(r["stage"] != "load" for r in h + c):
+    errs.append("contact.csv's last column is not stage, or a row's stage is not 'load'")
 
 
 def at(lam):

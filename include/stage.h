@@ -1,0 +1,44 @@
+/* Stages of the process: -stage_names a,b,... follow each other in process time, each with its
+   duration, its first and largest increment, the tools present and the Dirichlet conditions
+   active in it (-stage_<s>_duration, _steps, _dt_max, _tools, _bcs). Without -stage_names the
+   process is one stage, "load", of duration 1: the process time is the load parameter of the
+   -load_* options. Options only; the stepper enters the stages (stepper.c). */
+#ifndef ATRITO_STAGE_H
+#define ATRITO_STAGE_H
+#include "bc.h"
+#include "contact.h"
+#include "tool.h"
+
+#define STAGE_MAX 32
+#define STAGE_MAX_TOOLS 64
+
+typedef struct {
+  char      name[64];
+  PetscReal t0, t1;                /* start and end in process time                         */
+  PetscReal dt0, dt_max, dt_min;   /* first, largest and smallest increment                 */
+  PetscInt  ntools, nbcs;          /* -1: all (the default); else how many are listed        */
+  char      tools[STAGE_MAX_TOOLS][64], bcs[ATRITO_MAX_BC][64]; /* as listed ("none": empty) */
+  PetscBool tool_on[STAGE_MAX_TOOLS], bc_on[ATRITO_MAX_BC];      /* after StagesSetUp        */
+} Stage;
+
+typedef struct {
+  PetscInt  n;       /* >= 1                                   */
+  PetscBool given;   /* -stage_names was given                 */
+  PetscReal T;       /* total process time                     */
+  Stage     s[STAGE_MAX];
+} Stages;
+
+/* -stage_names and the per-stage options; the defaults of the increments from the -load_*
+   options (steps, and dt_max, dt_min as fractions of a stage's duration) */
+PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_steps, PetscReal dt_max, PetscReal dt_min);
+/* the names of -stage_<s>_tools and _bcs against the tools and conditions of the case (one-line
+   errors naming the option); marks the conditions that some stage leaves inactive (not section
+   constraints: bc.h) and gives the total time to the conditions and tools */
+PetscErrorCode StagesSetUp(Stages *sg, BCs *bcs, Contact contact);
+/* defined in src/contact/contact.c: read access to tool t, and a tool present or absent in the
+   current stage (an absent tool pairs no node; its nodes' states become "no contact") */
+PetscErrorCode ContactGetTool(Contact c, PetscInt t, const Tool **tool);
+PetscErrorCode ContactSetToolPresent(Contact c, PetscInt t, PetscBool present);
+/* the stage the step after the committed time t belongs to (a time on a stage end: the next) */
+PetscInt StageAt(const Stages *sg, PetscReal t);
+#endif

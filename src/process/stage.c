@@ -1,0 +1,157 @@
+/* Stages of the process (stage.h): options, names checked against the case's tools and
+   conditions. */
+#include <string.h>
+#include "stage.h"
+#include "tool.h"
+#include "options.h"
+
+static PetscErrorCode CheckName(MPI_Comm comm, const char *opt, const char *name)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(name[0] && strlen(name) < 64, comm, PETSC_ERR_USER_INPUT, "%s: empty name or longer than 63 characters", opt);
+  for (const char *c = name; *c; c++) PetscCheck((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '_', comm, PETSC_ERR_USER_INPUT, "%s: name '%s' may only contain letters, digits and _", opt, name);
+  PetscFunctionReturn(0);
+}
+
+/* a name list option of the stage block: -1 when not given (all), else the names ("none": 0) */
+static PetscErrorCode NameList(PetscOptionItems *PetscOptionsObject, const char *key, const char *text, const char *full, PetscInt max, char (*out)[64], PetscInt *n)
+{
+  char     *names[ATRITO_MAX_BC > STAGE_MAX_TOOLS ? ATRITO_MAX_BC : STAGE_MAX_TOOLS];
+  PetscInt  cnt = max;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  *n = -1;
+  PetscCall(PetscOptionsStringArray(key, text, NULL, names, &cnt, &set));
+  if (!set) PetscFunctionReturn(0);
+  *n = 0;
+  for (PetscInt k = 0; k < cnt; k++) {
+    PetscErrorCode ierr = 0;
+    if (!(cnt == 1 && !strcmp(names[k], "none"))) {
+      ierr = CheckName(PetscOptionsObject->comm, full, names[k]);
+      if (!ierr) PetscCall(PetscStrncpy(out[(*n)++], names[k], 64));
+    }
+    PetscCall(PetscFree(names[k]));
+    PetscCall(ierr);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_steps, PetscReal dt_max, PetscReal dt_min)
+{
+  char     *names[STAGE_MAX];
+  PetscInt  n = STAGE_MAX;
+  PetscBool set;
+  PetscReal t = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(sg, sizeof(*sg)));
+  PetscOptionsBegin(comm, NULL, "Stages", NULL);
+  PetscCall(PetscOptionsStringArray("-stage_names", "Stages of the process, in the order of the process time, each described by -stage_<name>_duration, _steps, _dt_max, _tools, _bcs (default: one stage of duration 1)", NULL, names, &n, &set));
+  PetscOptionsEnd();
+  sg->given = set && n > 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (!sg->given) {
+    sg->n = 1;
+    PetscCall(PetscStrncpy(sg->s[0].name, "load", sizeof(sg->s[0].name)));
+    sg->s[0].t0     = 0;
+    sg->s[0].t1     = 1;
+    sg->s[0].dt0    = 1.0 / load_steps;
+    sg->s[0].dt_max = dt_max;
+    sg->s[0].dt_min = dt_min;
+    sg->s[0].ntools = sg->s[0].nbcs = -1;
+    sg->T           = 1;
+    PetscFunctionReturn(0);
+  }
+  sg->n = n;
+  for (PetscInt k = 0; k < n; k++) {
+    PetscErrorCode ierr = CheckName(comm, "-stage_names", names[k]);
+    if (!ierr) PetscCall(PetscStrncpy(sg->s[k].name, names[k], sizeof(sg->s[k].name)));
+    PetscCall(PetscFree(names[k]));
+    PetscCall(ierr);
+    for (PetscInt j = 0; j < k; j++) PetscCheck(strcmp(sg->s[j].name, sg->s[k].name), comm, PETSC_ERR_USER_INPUT, "-stage_names: name '%s' given twice", sg->s[k].name);
+  }
+  for (PetscInt k = 0; k < n; k++) {
+    Stage         *s = &sg->s[k];
+    char           prefix[96], title[96], opt[128];
+    PetscInt       steps = load_steps;
+    PetscReal      D     = 1;
+    PetscBool      sset, mset;
+    PetscErrorCode ierr = 0;
+
+    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "stage_%s_", s->name));
+    PetscCall(PetscSNPrintf(title, sizeof(title), "Stage %s", s->name));
+    PetscOptionsBegin(comm, prefix, title, NULL);
+    PetscCall(PetscOptionsReal("-duration", "Duration of the stage in process time (> 0)", NULL, D, &D, NULL));
+    PetscCall(PetscOptionsInt("-steps", "First increment: the duration over this (default -load_steps)", NULL, steps, &steps, &sset));
+    s->dt_max = dt_max * D;
+    PetscCall(PetscOptionsReal("-dt_max", "Largest increment in the stage (default -load_dt_max times the duration; with -stage_<s>_steps the first increment)", NULL, s->dt_max, &s->dt_max, &mset));
+    s->dt_min = dt_min * D;
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-stage_%s_tools", s->name));
+    ierr = NameList(PetscOptionsObject, "-tools", "Tools present in the stage (default: all; none: no tool)", opt, STAGE_MAX_TOOLS, s->tools, &s->ntools);
+    if (!ierr) {
+      PetscCall(PetscSNPrintf(opt, sizeof(opt), "-stage_%s_bcs", s->name));
+      ierr = NameList(PetscOptionsObject, "-bcs", "Dirichlet conditions active in the stage (default: all; none: no condition)", opt, ATRITO_MAX_BC, s->bcs, &s->nbcs);
+    }
+    PetscOptionsEnd();
+    PetscCall(ierr);
+    PetscCheck(D > 0 && PetscIsNormalReal(D), comm, PETSC_ERR_USER_INPUT, "-stage_%s_duration %g must be > 0", s->name, (double)D);
+    PetscCheck(steps >= 1, comm, PETSC_ERR_USER_INPUT, "-stage_%s_steps %" PetscInt_FMT " must be >= 1", s->name, steps);
+    s->dt0 = D / steps;
+    if (sset && !mset) s->dt_max = PetscMax(s->dt_max, s->dt0);
+    PetscCheck(s->dt_max > 0 && s->dt_max <= D, comm, PETSC_ERR_USER_INPUT, "-stage_%s_dt_max %g must lie in (0, duration %g]", s->name, (double)s->dt_max, (double)D);
+    s->dt0 = PetscMin(s->dt0, s->dt_max);
+    s->dt_min = PetscMin(s->dt_min, s->dt0);
+    s->t0  = t;
+    t += D;
+    s->t1 = t; /* the stage ends where the next starts, exactly */
+  }
+  sg->T = t;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StagesSetUp(Stages *sg, BCs *bcs, Contact contact)
+{
+  const PetscInt nt = ContactNumTools(contact);
+
+  PetscFunctionBeginUser;
+  PetscCheck(nt <= STAGE_MAX_TOOLS, PETSC_COMM_WORLD, PETSC_ERR_SUP, "-tool_names: at most %d tools with stages", STAGE_MAX_TOOLS);
+  for (PetscInt k = 0; k < sg->n; k++) {
+    Stage *s = &sg->s[k];
+    for (PetscInt t = 0; t < nt; t++) s->tool_on[t] = s->ntools < 0 ? PETSC_TRUE : PETSC_FALSE;
+    for (PetscInt j = 0; j < s->ntools; j++) {
+      PetscInt found = -1;
+      for (PetscInt t = 0; t < nt; t++) {
+        const Tool *tl = NULL;
+        PetscCall(ContactGetTool(contact, t, &tl));
+        if (!strcmp(tl->name, s->tools[j])) found = t;
+      }
+      PetscCheck(found >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_tools: unknown tool '%s' (not in -tool_names)", s->name, s->tools[j]);
+      s->tool_on[found] = PETSC_TRUE;
+    }
+    for (PetscInt b = 0; b < bcs->n; b++) s->bc_on[b] = s->nbcs < 0 ? PETSC_TRUE : PETSC_FALSE;
+    for (PetscInt j = 0; j < s->nbcs; j++) {
+      PetscInt found = -1;
+      for (PetscInt b = 0; b < bcs->n; b++)
+        if (!strcmp(bcs->bc[b].name, s->bcs[j])) found = b;
+      PetscCheck(found >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_bcs: unknown condition '%s' (not in -bc_names)", s->name, s->bcs[j]);
+      s->bc_on[found] = PETSC_TRUE;
+    }
+  }
+  for (PetscInt b = 0; b < bcs->n; b++) {
+    bcs->bc[b].always = PETSC_TRUE;
+    for (PetscInt k = 0; k < sg->n; k++)
+      if (!sg->s[k].bc_on[b]) bcs->bc[b].always = PETSC_FALSE;
+    bcs->bc[b].active = sg->s[0].bc_on[b];
+  }
+  bcs->T = sg->T;
+  ToolsSetTotalTime(sg->T);
+  PetscFunctionReturn(0);
+}
+
+PetscInt StageAt(const Stages *sg, PetscReal t)
+{
+  const PetscReal tol = 1e-12 * sg->T;
+  PetscInt        k   = 0;
+  while (k < sg->n - 1 && t >= sg->s[k].t1 - tol) k++;
+  return k;
+}
