@@ -702,6 +702,34 @@ static PetscErrorCode timing(void)
   }
   printf("# hex8 (F-bar), plastic trial state, elements per CPU second (best of 5): residual: built-in J2 %.0f, UMAT %.0f (%.2fx); Jacobian: built-in J2 %.0f, UMAT %.0f (%.2fx)\n", rjr, rur, rjr / rur, rj, ru, rj / ru);
   PetscCall(MaterialDestroy(&mat));
+
+  /* the same for Hill 48: built-in hill48 and the Fortran UMAT with its polar frame (IAX 0) and
+     with the frame turned by DROT (IAX 1) */
+  {
+    HillParams     hp = hill_builtin(0, 1.6, 1.2, 2.0);
+    MaterialKernel hk;
+    Material       m0, m1;
+    const MaterialKernel *k0, *k1;
+    char           buf[512];
+    double         rh = 0, rhr = 0, r0 = 0, r0r = 0, r1 = 0, r1r = 0;
+    Hill48KernelInit(&hp, &hk);
+    PetscCall(MaterialFromOptions(hill_opts(0, 0, buf, sizeof buf), &m0, &ierr));
+    if (ierr) PetscFunctionReturn(0);
+    PetscCall(MaterialFromOptions(hill_opts(1, 0, buf, sizeof buf), &m1, &ierr));
+    if (ierr) PetscFunctionReturn(0);
+    PetscCall(MaterialGetKernel(m0, &k0));
+    PetscCall(MaterialGetKernel(m1, &k1));
+    for (int r = 0; r < 5; r++) {
+      double a, b;
+      a = time_jacobian(&hk, &b), rh = fmax(rh, a), rhr = fmax(rhr, b);
+      a = time_jacobian(k0, &b), r0 = fmax(r0, a), r0r = fmax(r0r, b);
+      a = time_jacobian(k1, &b), r1 = fmax(r1, a), r1r = fmax(r1r, b);
+    }
+    printf("# hex8 (F-bar), plastic trial state, elements per CPU second (best of 5): residual: built-in hill48 %.0f, Hill UMAT IAX 0 %.0f (%.2fx), IAX 1 %.0f (%.2fx); Jacobian: built-in hill48 %.0f, Hill UMAT IAX 0 %.0f (%.2fx), IAX 1 %.0f (%.2fx)\n", rhr, r0r, rhr / r0r, r1r,
+           rhr / r1r, rh, r0, rh / r0, r1, rh / r1);
+    PetscCall(MaterialDestroy(&m0));
+    PetscCall(MaterialDestroy(&m1));
+  }
   PetscFunctionReturn(0);
 }
 

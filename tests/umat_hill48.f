@@ -33,12 +33,12 @@ C     tangent d tau/dF of the bridge is exact; with IAX = 0 it misses
 C     the derivative of the frame (doc/umat.md, "Hill 48 UMAT").
 C
 C     DDSDDE = (1/J1) d tau / d DSTRAN: the Jacobian of the Jaumann rate
-C     of Kirchhoff stress over J, the consistent tangent of the return:
+C     of Kirchhoff stress over J, the consistent tangent of the return
+C     (in the frame Q, Mandel; rotated to the global basis):
 C       D_alg = Xi D + v w^T,  Xi = (I + 2G lam P)^{-1},
 C       v = d s/d lam = -2G q Xi m,  m = P s / q,
 C       w = -(1 - H' lam) D Xi m / (dr/dlam),
-C       dr/dlam = -q (2G m^T Xi m + H' (1 - 2G lam m^T Xi m)),
-C     rotated from the frame Q to the global basis.
+C       dr/dlam = -q (2G m^T Xi m + H' (1 - 2G lam m^T Xi m)).
 C
 C     PROPS (13 to 20 values):
 C       1 E, 2 nu,
@@ -83,6 +83,13 @@ C
       DOUBLE PRECISION EP,DL,QTR,QQ,SY,HS,R,DR,LO,HI,DLN,QP,XMXM,TR,T
       DOUBLE PRECISION XNAN
       INTEGER IHARD,IANI,IAX,I,J,K,IT,IPL
+C     Abaqus component I is Mandel component IAB(I); stress = Mandel *
+C     SAB, Mandel = engineering strain * SAB
+      INTEGER IAB(6)
+      DOUBLE PRECISION SAB(6)
+      DATA IAB /1, 2, 3, 6, 5, 4/
+      DATA SAB /1.D0, 1.D0, 1.D0, 0.70710678118654752D0,
+     1 0.70710678118654752D0, 0.70710678118654752D0/
 C
       XNAN = 0.D0
       XNAN = XNAN / XNAN
@@ -328,24 +335,46 @@ C     the algorithmic tangent in the frame Q
           END DO
         END DO
       END IF
-C     DDSDDE: column K is D_alg applied to the unit engineering strain K
+C     DDSDDE = T D_alg T^T / J1 with T the Mandel form of S -> Q S Q^T
+C     (orthogonal), in Abaqus's order and shear conventions: stress
+C     component 12 = Mandel 6 / sqrt 2, engineering strain 12 = sqrt 2
+C     Mandel 6 (the elastic D is isotropic: no rotation)
+      IF (IPL.EQ.1) THEN
+        DO J = 1, 6
+          DO I = 1, 6
+            EV(I) = 0.D0
+          END DO
+          EV(J) = 1.D0
+          CALL HM2T(EV, TL)
+          CALL HROT(Q, TL, TG, 0)
+          CALL HT2M(TG, EV)
+          DO I = 1, 6
+            XI(I, J) = EV(I)
+          END DO
+        END DO
+        DO J = 1, 6
+          DO I = 1, 6
+            T = 0.D0
+            DO K = 1, 6
+              T = T + XI(I, K) * DA(K, J)
+            END DO
+            DM(I, J) = T
+          END DO
+        END DO
+        DO J = 1, 6
+          DO I = 1, 6
+            T = 0.D0
+            DO K = 1, 6
+              T = T + DM(I, K) * XI(J, K)
+            END DO
+            DA(I, J) = T
+          END DO
+        END DO
+      END IF
       DO K = 1, 6
         DO I = 1, 6
-          EV(I) = 0.D0
+          DDSDDE(I, K) = DA(IAB(I), IAB(K)) * SAB(I) * SAB(K) / J1
         END DO
-        EV(K) = 1.D0
-        CALL HV2T(EV, WK, 0.5D0)
-        CALL HROT(Q, WK, TL, 1)
-        CALL HT2M(TL, STR)
-        CALL HMV6(DA, STR, EV)
-        CALL HM2T(EV, TL)
-        CALL HROT(Q, TL, TG, 0)
-        DDSDDE(1, K) = TG(1, 1) / J1
-        DDSDDE(2, K) = TG(2, 2) / J1
-        DDSDDE(3, K) = TG(3, 3) / J1
-        DDSDDE(4, K) = TG(1, 2) / J1
-        DDSDDE(5, K) = TG(1, 3) / J1
-        DDSDDE(6, K) = TG(2, 3) / J1
       END DO
       RETURN
 C
@@ -498,24 +527,41 @@ C
 C     ITR = 0: B = Q A Q^T;  ITR = 1: B = Q^T A Q  (A symmetric)
       SUBROUTINE HROT(Q, A, B, ITR)
       IMPLICIT NONE
-      INTEGER ITR, I, J, K, L
-      DOUBLE PRECISION Q(3,3), A(3,3), B(3,3), T
-      DO J = 1, 3
-        DO I = J, 3
-          T = 0.D0
-          DO L = 1, 3
-            DO K = 1, 3
-              IF (ITR .EQ. 0) THEN
-                T = T + Q(I, K) * A(K, L) * Q(J, L)
-              ELSE
-                T = T + Q(K, I) * A(K, L) * Q(L, J)
-              END IF
-            END DO
+      INTEGER ITR, I, J
+      DOUBLE PRECISION Q(3,3), A(3,3), B(3,3), W(3,3), T
+      IF (ITR .EQ. 0) THEN
+C       W = A Q^T, B = Q W
+        DO J = 1, 3
+          DO I = 1, 3
+            W(I, J) = A(I, 1) * Q(J, 1) + A(I, 2) * Q(J, 2)
+     1              + A(I, 3) * Q(J, 3)
           END DO
-          B(I, J) = T
-          B(J, I) = T
         END DO
-      END DO
+        DO J = 1, 3
+          DO I = J, 3
+            T = Q(I, 1) * W(1, J) + Q(I, 2) * W(2, J)
+     1        + Q(I, 3) * W(3, J)
+            B(I, J) = T
+            B(J, I) = T
+          END DO
+        END DO
+      ELSE
+C       W = A Q, B = Q^T W
+        DO J = 1, 3
+          DO I = 1, 3
+            W(I, J) = A(I, 1) * Q(1, J) + A(I, 2) * Q(2, J)
+     1              + A(I, 3) * Q(3, J)
+          END DO
+        END DO
+        DO J = 1, 3
+          DO I = J, 3
+            T = Q(1, I) * W(1, J) + Q(2, I) * W(2, J)
+     1        + Q(3, I) * W(3, J)
+            B(I, J) = T
+            B(J, I) = T
+          END DO
+        END DO
+      END IF
       RETURN
       END
 C
