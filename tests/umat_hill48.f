@@ -28,7 +28,7 @@ C       IAX = 1: the product of the incremental rotations DROT, kept in
 C                STATEV(8..16) (as Abaqus/Standard rotates the material
 C                directions of *ORIENTATION for solid elements).
 C     With IAX = 1 the update is objective in the sense of doc/umat.md
-C     (rotating STRESS, DSTRAN and DROT rotates the result), so the
+C     (rotating STRESS, DSTRAN and the frame rotates the result), so the
 C     tangent d tau/dF of the bridge is exact; with IAX = 0 it misses
 C     the derivative of the frame (doc/umat.md, "Hill 48 UMAT").
 C
@@ -40,7 +40,7 @@ C       v = d s/d lam = -2G q Xi m,  m = P s / q,
 C       w = -(1 - H' lam) D Xi m / (dr/dlam),
 C       dr/dlam = -q (2G m^T Xi m + H' (1 - 2G lam m^T Xi m)).
 C
-C     PROPS (13 to 20 values):
+C     PROPS (NPROPS = 13, 14 or 20):
 C       1 E, 2 nu,
 C       3 IHARD: 0 linear, sigma_y = PROPS(4) + PROPS(5) ep;
 C                1 Swift,  sigma_y = PROPS(4) (PROPS(5) + ep)^PROPS(6)
