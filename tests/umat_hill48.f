@@ -24,9 +24,8 @@ C     The orthotropy frame: Q = A0 in the reference configuration
 C     (rolling direction rd, transverse nd x rd, normal nd), rotated by
 C       IAX = 0: the rotation R of the polar decomposition of DFGRD1
 C                (as the built-in hill48: the frame of F = R U);
-C       IAX = 1: the product of the incremental rotations DROT, kept in
-C                STATEV(8..16) (as Abaqus/Standard rotates the material
-C                directions of *ORIENTATION for solid elements).
+C       IAX = 1: the product of the incremental rotations DROT (those
+C                applied to STRESS), kept in STATEV(8..16).
 C     With IAX = 1 the update is objective in the sense of doc/umat.md
 C     (rotating STRESS, DSTRAN and the frame rotates the result), so the
 C     tangent d tau/dF of the bridge is exact; with IAX = 0 it misses
