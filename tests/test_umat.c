@@ -357,6 +357,18 @@ static HillParams hill_builtin(double th_deg, double r0, double r45, double r90)
   return hp;
 }
 
+/* the built-in hill48 on J2Params base, r-values, rolling direction rd and normal nd */
+static HillParams hill_general(J2Params base, double r0, double r45, double r90, const double rd[3], const double nd[3])
+{
+  HillParams hp;
+  memset(&hp, 0, sizeof hp);
+  hp.base   = base;
+  hp.from_r = 1, hp.r0 = r0, hp.r45 = r45, hp.r90 = r90;
+  for (int i = 0; i < 3; i++) hp.rd[i] = rd[i], hp.nd[i] = nd[i];
+  Hill48ParamsSetup(&hp);
+  return hp;
+}
+
 /* one call of the UMAT fn (the bridge's fixed arguments) */
 static void call_umat(const UmatParams *p, double stress[6], double *statev, double ddsdde[36], const double dstran[6], const double drot[9], const double f0[9], const double f1[9], double *pnewdt)
 {
@@ -552,6 +564,46 @@ static PetscErrorCode test_fortran_hill(void)
       const double e = ddsdde_fd(&p, &s, 20, &npl);
       TU_CHECK(e < 1e-6 && npl >= 10, "Hill UMAT DDSDDE vs central differences of STRESS in DSTRAN (%s; %d of 20 random states plastic): largest relative error %.2e (< 1e-6)", names[c], npl, e);
     }
+  }
+
+  /* (1b) one step from the virgin state: both trial states are the log strain ln V = R ln U R^T
+     in the frame R A and both returns solve the same equation, so UMAT (IAX 0) = built-in for any
+     F; large random F (stretches up to 30 %, any rotation), three parameter sets */
+  {
+    J2Params lin;
+    memset(&lin, 0, sizeof lin);
+    lin.E = 69004, lin.nu = 0.3, lin.law = HARDENING_LINEAR, lin.sy0 = 150, lin.H = 0;
+    J2ParamsSetup(&lin);
+    const double rdx[3] = {1, 0, 0}, ndz[3] = {0, 0, 1}, rdo[3] = {1, 2, 0.5}, ndo[3] = {-2, 1, 0};
+    const HillParams hps[3]   = {hill_general(swift_j2(), 1.6, 1.2, 2.0, rdx, ndz), hill_general(swift_j2(), 0.3, 3.0, 0.5, rdo, ndo), hill_general(lin, 2.8, 0.4, 1.9, rdx, ndz)};
+    const double     pr[3][20] = {{69004, 0.3, 1, 589, 1e-4, 0.216, 0, 1.6, 1.2, 2.0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1},
+                                  {69004, 0.3, 1, 589, 1e-4, 0.216, 0, 0.3, 3.0, 0.5, 0, 0, 0, 0, 1, 2, 0.5, -2, 1, 0},
+                                  {69004, 0.3, 0, 150, 0, 0, 0, 2.8, 0.4, 1.9, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}};
+    double worst = 0;
+    int    npl = 0, nfail = 0;
+    for (int b = 0; b < 3; b++) {
+      UmatParams     p = *(const UmatParams *)mk->ctx;
+      MaterialKernel uk, bk;
+      p.nprops = 20;
+      for (int i = 0; i < 20; i++) p.props[i] = pr[b][i];
+      UmatKernelInit(&p, &uk);
+      Hill48KernelInit(&hps[b], &bk);
+      for (int t = 0; t < 100; t++) {
+        double F[9], hu0[UMAT_NHIST(7)], hu1[UMAT_NHIST(7)], hb0[HILL48_NHIST], hb1[HILL48_NHIST], tu[9], tb[9];
+        int    plu, plb;
+        random_F(&s, 0.3, F);
+        uk.history_init(uk.ctx, hu0);
+        bk.history_init(bk.ctx, hb0);
+        if (uk.update(uk.ctx, F, hu0, tu, NULL, hu1, &plu) || bk.update(bk.ctx, F, hb0, tb, NULL, hb1, &plb) || plu != plb) {
+          nfail++;
+          continue;
+        }
+        npl += plu;
+        worst = fmax(worst, fdiff(tu, tb, 9) / fnorm(tb, 9));
+        worst = fmax(worst, fabs(hu1[0] - hb1[HILL48_HIST_EP]) / fmax(hb1[HILL48_HIST_EP], 1e-3));
+      }
+    }
+    TU_CHECK(worst < 1e-9 && nfail == 0 && npl > 200, "one step from the virgin state, 300 random F = R (1 + 0.3 Z) (Z entries in [-1, 1), any rotation R; r 1.6/1.2/2.0, r 0.3/3.0/0.5 on oblique axes, perfect plasticity): Hill UMAT = built-in hill48 to %.1e in tau and ep (< 1e-9), %d plastic, %d failed or disagreeing on yielding", worst, npl, nfail);
   }
 
   /* (2) r-values 1: the Fortran J2 UMAT's update, in simple shear to 2 */
