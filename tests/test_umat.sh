@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # User materials (-material_type umat) in whole runs: the Fortran J2 UMAT (bin/umat_j2.so, from
 # tests/umat_j2.f) against the built-in J2 in uniaxial tension, simple shear and a short contact
-# run; -snes_test_jacobian with the UMAT in the plastic regime; bad input (missing library,
-# missing symbol, a PNEWDT cut, a NaN stress) with the C UMATs of bin/umat_ctest.so.
+# run; -snes_test_jacobian with the UMAT in the plastic regime; the Fortran Hill 48 UMAT
+# (bin/umat_hill48.so, from tests/umat_hill48.f) against the built-in hill48 in the same way, in
+# tension at 0, 45 and 90 degrees to the rolling direction; bad input (missing library, missing
+# symbol, a PNEWDT cut, a NaN stress) with the C UMATs of bin/umat_ctest.so.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -40,6 +42,55 @@ fi
 atrito 1 jac -options_file cases/clamped_beam.opts -box_cells 3,1,2 -load_steps 3 -output_interval 0 $UJ2 $SWIFT_PROPS -snes_test_jacobian &&
   pycheck snes_test_jacobian "$OUT/jac.log" 6 1e-6 "Fortran J2 UMAT, plastic"
 
+# 4b. the Hill 48 UMAT against the built-in hill48 (r-values 1.6/1.2/2.0 of a steel sheet, Swift
+#     hardening). PROPS: E, nu, 1 (Swift), K, eps0, n, 0 (r-values), r0, r45, r90, -, -, -, IAX,
+#     rolling direction, normal. IAX 0: the UMAT's frame turns with the polar rotation of DFGRD1,
+#     as the built-in's. Tolerances from the measured differences (doc/umat.md, "Hill 48 UMAT").
+STEEL="-material_type hill48 -material_hill_r0 1.6 -material_hill_r45 1.2 -material_hill_r90 2.0"
+UH="-material_type umat -material_umat bin/umat_hill48.so -material_umat_statev_ep 1"
+HP="69004,0.3,1,589,1e-4,0.216,0,1.6,1.2,2.0,0,0,0"
+# tension bar to 30 % along x with the rolling direction at 0, 45 and 90 degrees to it: at 0 and
+# 90 the loading is proportional along the orthotropy axes and the two coincide (measured 7e-10;
+# 8 digits, 5e-8); at 45 the bar shears against its symmetry planes, the flow is not coaxial with
+# the strain, the formulations differ at second order (measured 1.7e-7; 6 digits, 5e-6)
+for th in 0 45 90; do
+  case $th in 0) rd=1,0,0 d=8 ;; 45) rd=0.70710678118654757,0.70710678118654757,0 d=6 ;; 90) rd=0,1,0 d=8 ;; esac
+  atrito 1 hill_t$th -options_file cases/tension_bar.opts -output_interval 0 $STEEL -material_hill_rd $rd &&
+    atrito 1 uhill_t$th -options_file cases/tension_bar.opts -output_interval 0 $UH -material_umat_nstatev 7 -material_umat_props $HP,0,$rd,0,0,1 &&
+    compare "$OUT/hill_t$th/history.csv" "$OUT/uhill_t$th/history.csv" $d "tension bar to 30 %, rolling direction at $th degrees: Fortran Hill 48 UMAT and built-in hill48 histories"
+done
+[ -f "$OUT/hill_t0/history.csv" ] && [ -f "$OUT/hill_t45/history.csv" ] &&
+  ! compare "$OUT/hill_t0/history.csv" "$OUT/hill_t45/history.csv" 3 "-" >/dev/null &&
+  ok "tension bar: the rolling direction at 0 and 45 degrees gives different histories (3 digits)" || not_ok "tension bar: the rolling direction changes nothing"
+# simple shear to 1.5 (the slab of 2.): measured 5.7e-7 on the shear force, 1.2e-5 on the normal
+# force, as with J2 (second order: the elastic strain squared, (sigma_y/E)^2 ~ 2.6e-5, plus a
+# step-size term): 5 digits (5e-5). With the frame turned by the product of DROT (IAX 1: the spin, 0.75
+# rad instead of atan 0.75 = 0.64 rad at shear 1.5) the forces differ by 1 to 3 %.
+atrito 1 hill_shear $SHEAR $STEEL -material_hardening swift &&
+  atrito 1 uhill_shear $SHEAR $UH -material_umat_nstatev 7 -material_umat_props $HP,0 &&
+  compare "$OUT/hill_shear/history.csv" "$OUT/uhill_shear/history.csv" 5 "simple shear to 1.5: Fortran Hill 48 UMAT and built-in hill48 histories"
+# a short contact run, block and sphere at np = 2, plastic (linear hardening, yield 20, E = 1000):
+# measured 6.9e-5 on the contact forces (elastic strains up to sigma_y/E = 2 %, squared 4e-4):
+# 4 digits (5e-4); the plastic run differs from the elastic one (the material yields)
+HCON="-options_file cases/block_sphere.opts -load_max_steps 4 -output_interval 0"
+atrito 2 hill_sphere $HCON $STEEL -material_yield 20 -material_hardening_modulus 200 >/dev/null 2>&1 || true
+atrito 2 uhill_sphere $HCON $UH -material_umat_nstatev 7 -material_umat_props 1000,0.3,0,20,200,0,0,1.6,1.2,2.0,0,0,0,0 >/dev/null 2>&1 || true
+atrito 2 uhill_sphere_el $HCON $UH -material_umat_nstatev 7 -material_umat_props 1000,0.3,0,1e9,0,0,0,1.6,1.2,2.0,0,0,0,0 >/dev/null 2>&1 || true
+if [ -s "$OUT/hill_sphere/contact.csv" ] && [ -s "$OUT/uhill_sphere/contact.csv" ] && [ -s "$OUT/uhill_sphere_el/contact.csv" ]; then
+  compare "$OUT/hill_sphere/contact.csv" "$OUT/uhill_sphere/contact.csv" 4 "block and sphere, 4 plastic steps at np=2: Fortran Hill 48 UMAT and built-in hill48 contact histories"
+  ! compare "$OUT/uhill_sphere/contact.csv" "$OUT/uhill_sphere_el/contact.csv" 3 "-" >/dev/null &&
+    ok "block and sphere: the Hill 48 UMAT with yield 20 and elastic give different contact histories (3 digits)" || not_ok "block and sphere: the Hill 48 UMAT does not yield"
+else
+  not_ok "block and sphere with the Hill 48 UMAT: no contact history"; tail -n 3 "$OUT/uhill_sphere.log" | indent
+fi
+# -snes_test_jacobian, plastic: IAX 1 (the update is objective, the bridge's tangent exact) at the
+# finite-difference limit; IAX 0 misses the derivative of the polar frame (measured 1.2e-5)
+HJAC="-options_file cases/clamped_beam.opts -box_cells 3,1,2 -load_steps 3 -output_interval 0 -snes_test_jacobian"
+atrito 1 uhill_jac1 $HJAC $UH -material_umat_nstatev 16 -material_umat_props $HP,1 &&
+  pycheck snes_test_jacobian "$OUT/uhill_jac1.log" 6 1e-6 "Fortran Hill 48 UMAT, frame turned by DROT (IAX 1), plastic"
+atrito 1 uhill_jac0 $HJAC $UH -material_umat_nstatev 7 -material_umat_props $HP,0 &&
+  pycheck snes_test_jacobian "$OUT/uhill_jac0.log" 6 1e-4 "Fortran Hill 48 UMAT, polar frame (IAX 0), plastic"
+
 # 5. bad input: one-line errors, a cut
 bad() { # bad NAME EXPECT ARGS...: a one-line "atrito: error" containing EXPECT, non-zero exit, no crash
   local name=$1 expect=$2; shift 2
@@ -54,6 +105,7 @@ bad() { # bad NAME EXPECT ARGS...: a one-line "atrito: error" containing EXPECT,
 SMALL="-options_file cases/tension_bar.opts -box_cells 2,1,1 -load_steps 2 -output_interval 0"
 bad nolib "-material_umat bin/no_such.so: cannot load the library" $SMALL -material_type umat -material_umat bin/no_such.so
 bad nosym "-material_umat_symbol vumat_: not found in bin/umat_j2.so" $SMALL $UJ2 -material_umat_symbol vumat_
+bad hill_nstatev "did not converge" $SMALL $UH -material_umat_nstatev 7 -material_umat_props $HP,1 -load_max_cuts 2
 bad nan "did not converge" $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_nan_ -material_umat_props 69004,0.3 -load_max_cuts 2
 # PNEWDT < 1: the material's MAT_ERR_CUTBACK fails the step at once and it is retried smaller
 atrito 1 cut $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_cut_ -material_umat_props 69004,0.3 &&
