@@ -9,15 +9,18 @@ static inline double t3_det(const double A[9])
   return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) + A[2] * (A[3] * A[7] - A[4] * A[6]);
 }
 
-/* inverse of a 3x3 matrix (adjugate / determinant); returns the determinant (Ainv is left
-   unset when it is 0). Ainv may not alias A. */
+/* inverse of a 3x3 matrix (adjugate / determinant); returns the determinant (Ainv is set to
+   zero when it is 0). Ainv may not alias A. */
 static inline double t3_inv(const double A[9], double Ainv[9])
 {
   const double c00 = A[4] * A[8] - A[5] * A[7];
   const double c01 = A[5] * A[6] - A[3] * A[8];
   const double c02 = A[3] * A[7] - A[4] * A[6];
   const double det = A[0] * c00 + A[1] * c01 + A[2] * c02;
-  if (det == 0.0) return 0.0;
+  if (det == 0.0) {
+    for (int i = 0; i < 9; i++) Ainv[i] = 0.0;
+    return 0.0;
+  }
   const double id = 1.0 / det;
   Ainv[0] = c00 * id;
   Ainv[1] = (A[2] * A[7] - A[1] * A[8]) * id;
