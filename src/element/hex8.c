@@ -93,56 +93,131 @@ double hex8_min_jacobian(const double X[8][3])
   return m;
 }
 
-/* g_aj = dN_a/dX_K Finv_Kj */
-static void spatial_gradient(const double dNdX[8][3], const double Finv[9], double g[8][3])
+/* ------------------------------------------------------------------------------------------ */
+/* the element kernel                                                                          */
+/* ------------------------------------------------------------------------------------------ */
+/* dN_a/dxi_K at the 8 Gauss points (q = 0..7) and at the centroid (q = 8), component-major:
+   DNQ[q][K][a]. Compile-time constants, the same products as hex8_shape's
+   0.125 s_a (1 + t_a eta)(1 + r_a zeta) in the same order (bit for bit). */
+#define NS(a) (((a) == 1 || (a) == 2 || (a) == 5 || (a) == 6) ? 1.0 : -1.0)
+#define NT(a) (((a) == 2 || (a) == 3 || (a) == 6 || (a) == 7) ? 1.0 : -1.0)
+#define NR(a) ((a) >= 4 ? 1.0 : -1.0)
+#define DNX(a, x, y, z) (0.125 * NS(a) * (1 + NT(a) * (y)) * (1 + NR(a) * (z)))
+#define DNY(a, x, y, z) (0.125 * NT(a) * (1 + NS(a) * (x)) * (1 + NR(a) * (z)))
+#define DNZ(a, x, y, z) (0.125 * NR(a) * (1 + NS(a) * (x)) * (1 + NT(a) * (y)))
+#define ROW8(D, x, y, z) {D(0, x, y, z), D(1, x, y, z), D(2, x, y, z), D(3, x, y, z), D(4, x, y, z), D(5, x, y, z), D(6, x, y, z), D(7, x, y, z)}
+#define PT(x, y, z) {ROW8(DNX, x, y, z), ROW8(DNY, x, y, z), ROW8(DNZ, x, y, z)}
+#define GQ(q) PT(NS(q) * GP, NT(q) * GP, NR(q) * GP)
+static const double DNQ[HEX8_NQP + 1][3][8] = {GQ(0), GQ(1), GQ(2), GQ(3), GQ(4), GQ(5), GQ(6), GQ(7), PT(0.0, 0.0, 0.0)};
+#undef GQ
+#undef PT
+#undef ROW8
+#undef DNX
+#undef DNY
+#undef DNZ
+#undef NS
+#undef NT
+#undef NR
+
+/* Reference gradient at the point q of DNQ, component-major: dX[K][a] = dN_a/dX_K, and
+   det(dX/dxi) (dX set only when it is positive). The same sums as hex8_gradient. */
+static inline double ref_gradient(const double (*restrict X)[3], int q, double dX[restrict 3][8])
 {
+  const double(*D)[8] = DNQ[q];
+  double Jm[9] = {0}, Ji[9];
+  /* Jm_iK = dX_i / dxi_K */
   for (int a = 0; a < 8; a++)
-    for (int j = 0; j < 3; j++) g[a][j] = dNdX[a][0] * Finv[j] + dNdX[a][1] * Finv[3 + j] + dNdX[a][2] * Finv[6 + j];
+    for (int i = 0; i < 3; i++)
+      for (int k = 0; k < 3; k++) Jm[3 * i + k] += X[a][i] * D[k][a];
+  const double det = t3_inv(Jm, Ji);
+  if (det <= 0) return det;
+  for (int i = 0; i < 3; i++)
+    for (int a = 0; a < 8; a++) dX[i][a] = D[0][a] * Ji[i] + D[1][a] * Ji[3 + i] + D[2][a] * Ji[6 + i];
+  return det;
 }
 
-int hex8_element(const Hex8Options *eo, const MaterialKernel *mat, const double X[8][3], const double u[8][3], const double *hn, double fe[24], double *ke, double *h, ElementInfo *info)
+/* F_iK = delta_iK + sum_a u_ai dN_a/dX_K */
+static inline void defgrad_cm(const double (*restrict u)[3], const double dX[restrict 3][8], double F[restrict 9])
 {
-  static const double centre[3] = {0, 0, 0};
-  double dNdX0[8][3], F0[9], F0inv[9], g0[8][3], J0 = 1.0;
-  double dtau[81], tau[9];
-  int    nplastic = 0;
-  const int nh = mat->nhist; /* history doubles per quadrature point */
+  for (int i = 0; i < 3; i++)
+    for (int K = 0; K < 3; K++) {
+      double s = (i == K) ? 1.0 : 0.0;
+      for (int a = 0; a < 8; a++) s += u[a][i] * dX[K][a];
+      F[3 * i + K] = s;
+    }
+}
 
-  memset(fe, 0, 24 * sizeof(double));
-  if (ke) memset(ke, 0, 24 * 24 * sizeof(double));
+/* spatial gradient, component-major: g[j][a] = dN_a/dX_K Finv_Kj */
+static inline void spatial_gradient_cm(const double dX[restrict 3][8], const double Finv[restrict 9], double g[restrict 3][8])
+{
+  for (int j = 0; j < 3; j++)
+    for (int a = 0; a < 8; a++) g[j][a] = dX[0][a] * Finv[j] + dX[1][a] * Finv[3 + j] + dX[2][a] * Finv[6 + j];
+}
+
+/* Per Gauss point, with w = det(dX/dxi) (unit weights), g = the spatial gradient of F,
+   taubar = tau(Fbar) and T = dtau/dF at Fbar (K_ai,bm of the header comment, term by term):
+     fe[3a+i]       += w sum_j taubar_ij g_aj
+     Hm[ij][3b+m]    = alpha sum_L T_ij,mL dN_b/dX_L                             (material)
+                     + alpha/3 TF_ij (g0_bm - g_bm),   TF_ij = T_ij,kL F_kL       (F-bar)
+     Hm[in][3b+n]   -= sum_j taubar_ij g_bj                                      (geometric)
+     ke[3a+i][bm]   += w sum_n g_an Hm[in][bm]
+   The reference gradients come from the constant table DNQ (no shape functions evaluated per
+   element) and are kept component-major (dX[K][a], g[j][a]: unit stride over the 8 nodes) for
+   F, the spatial gradient and the force; the tangent loops run over the 24 columns bm of a
+   row, node-major as the interface wants them, on transposed copies. The kernel is compiled
+   twice (tangent = 0 or 1, a constant in each copy): the residual evaluation carries none of
+   the tangent's code or stack. The arithmetic is that of the formulation term by term, in the
+   same order: fe and ke are the same bit for bit as the straightforward implementation
+   (tests/test_fe.c). */
+static inline __attribute__((always_inline)) int hex8_element_impl(const Hex8Options *eo, const MaterialKernel *mat, const double X[8][3], const double u[8][3], const double *hn, double fe[24], double *ke, double *h, ElementInfo *info, const int tangent)
+{
+  double       dX0[3][8], F0[9], F0inv[9], g0[3][8], J0 = 1.0;
+  double       dtau[81], tau[9], fc[3][8];
+  int          nplastic = 0;
+  const int    nh       = mat->nhist; /* history doubles per quadrature point */
+  const int    fbar     = eo->fbar;
+  const double(*restrict Xr)[3] = X;
+  const double(*restrict ur)[3] = u;
+
   if (info) memset(info, 0, sizeof(*info));
+  memset(fc, 0, sizeof(fc));
+  if (tangent) memset(ke, 0, 24 * 24 * sizeof(double));
 
-  if (eo->fbar || info) {
-    if (hex8_gradient(X, centre, dNdX0) <= 0) return MAT_ERR_JACOBIAN;
-    hex8_defgrad(u, dNdX0, F0);
+  if (fbar || info) {
+    if (ref_gradient(Xr, HEX8_NQP, dX0) <= 0) goto fail_jac;
+    defgrad_cm(ur, dX0, F0);
     J0 = t3_inv(F0, F0inv);
-    if (J0 <= 0) return MAT_ERR_JACOBIAN;
-    spatial_gradient(dNdX0, F0inv, g0);
+    if (J0 <= 0) goto fail_jac;
+    spatial_gradient_cm(dX0, F0inv, g0);
     if (info) memcpy(info->F0, F0, sizeof(F0));
   }
 
   for (int q = 0; q < HEX8_NQP; q++) {
-    double dNdX[8][3], F[9], Finv[9], Fb[9], g[8][3];
-    const double detX = hex8_gradient(X, hex8_gauss[q], dNdX);
-    if (detX <= 0) return MAT_ERR_JACOBIAN;
-    hex8_defgrad(u, dNdX, F);
+    double       dX[3][8], F[9], Finv[9], Fb[9], g[3][8];
+    const double detX = ref_gradient(Xr, q, dX);
+    if (detX <= 0) goto fail_jac;
+    defgrad_cm(ur, dX, F);
     const double J = t3_inv(F, Finv);
-    if (J <= 0) return MAT_ERR_JACOBIAN;
-    spatial_gradient(dNdX, Finv, g);
+    if (J <= 0) goto fail_jac;
+    spatial_gradient_cm(dX, Finv, g);
 
     double alpha = 1.0;
-    if (eo->fbar) alpha = cbrt(J0 / J);
+    if (fbar) alpha = cbrt(J0 / J);
     for (int k = 0; k < 9; k++) Fb[k] = alpha * F[k];
 
-    int plastic = 0;
-    const int st = mat->update(mat->ctx, Fb, hn + (size_t)q * nh, tau, ke ? dtau : NULL, h + (size_t)q * nh, &plastic);
-    if (st != MAT_OK) return st;
+    int       plastic = 0;
+    const int st      = mat->update(mat->ctx, Fb, hn + (size_t)q * nh, tau, tangent ? dtau : NULL, h + (size_t)q * nh, &plastic);
+    if (st != MAT_OK) {
+      if (tangent) memset(ke, 0, 24 * 24 * sizeof(double));
+      memset(fe, 0, 24 * sizeof(double));
+      return st;
+    }
     nplastic += plastic;
     const double w = detX; /* unit Gauss weights */
 
     /* internal force */
-    for (int a = 0; a < 8; a++)
-      for (int i = 0; i < 3; i++) fe[3 * a + i] += w * (tau[3 * i] * g[a][0] + tau[3 * i + 1] * g[a][1] + tau[3 * i + 2] * g[a][2]);
+    for (int i = 0; i < 3; i++)
+      for (int a = 0; a < 8; a++) fc[i][a] += w * (tau[3 * i] * g[0][a] + tau[3 * i + 1] * g[1][a] + tau[3 * i + 2] * g[2][a]);
 
     if (info) {
       const double Jb = alpha * alpha * alpha * J, s[6] = {tau[0] / Jb, tau[4] / Jb, tau[8] / Jb, tau[1] / Jb, tau[5] / Jb, tau[2] / Jb};
@@ -152,20 +227,23 @@ int hex8_element(const Hex8Options *eo, const MaterialKernel *mat, const double 
       for (int k = 0; k < 6; k++) info->sigma[k] += s[k] / HEX8_NQP;
     }
 
-    if (!ke) continue;
-    /* All three terms in the form K_ai,bm += sum_j g_aj Hm[ij][bm]:
-         material   Hm[ij][bm]  = alpha Tau_ij,mL dN_b/dX_L
-         F-bar      Hm[ij][bm] += alpha/3 TF_ij (g0_bm - g_bm),  TF_ij = Tau_ij,kL F_kL
-         geometric  Hm[in][bn] -= taubar_ij g_bj   (for m = n)                          */
+    if (!tangent) continue;
+    /* the tangent in the node-major order: the gradients transposed */
+    double dNdX[8][3], gn[8][3];
+    for (int a = 0; a < 8; a++)
+      for (int k = 0; k < 3; k++) {
+        dNdX[a][k] = dX[k][a];
+        gn[a][k]   = g[k][a];
+      }
     double Hm[9][24], c3 = alpha / 3.0, dg[24];
     for (int ij = 0; ij < 9; ij++) {
       const double *T = dtau + 9 * ij;
       for (int b = 0; b < 8; b++)
         for (int m = 0; m < 3; m++) Hm[ij][3 * b + m] = alpha * (T[3 * m] * dNdX[b][0] + T[3 * m + 1] * dNdX[b][1] + T[3 * m + 2] * dNdX[b][2]);
     }
-    if (eo->fbar) {
+    if (fbar) {
       for (int b = 0; b < 8; b++)
-        for (int m = 0; m < 3; m++) dg[3 * b + m] = c3 * (g0[b][m] - g[b][m]);
+        for (int m = 0; m < 3; m++) dg[3 * b + m] = c3 * (g0[m][b] - gn[b][m]);
       for (int ij = 0; ij < 9; ij++) {
         double t = 0;
         for (int kL = 0; kL < 9; kL++) t += dtau[9 * ij + kL] * F[kL];
@@ -174,11 +252,11 @@ int hex8_element(const Hex8Options *eo, const MaterialKernel *mat, const double 
     }
     for (int b = 0; b < 8; b++)
       for (int i = 0; i < 3; i++) {
-        const double sb = tau[3 * i] * g[b][0] + tau[3 * i + 1] * g[b][1] + tau[3 * i + 2] * g[b][2];
+        const double sb = tau[3 * i] * gn[b][0] + tau[3 * i + 1] * gn[b][1] + tau[3 * i + 2] * gn[b][2];
         for (int n = 0; n < 3; n++) Hm[3 * i + n][3 * b + n] -= sb;
       }
     for (int a = 0; a < 8; a++) {
-      const double ga0 = w * g[a][0], ga1 = w * g[a][1], ga2 = w * g[a][2];
+      const double ga0 = w * gn[a][0], ga1 = w * gn[a][1], ga2 = w * gn[a][2];
       for (int i = 0; i < 3; i++) {
         double       *row = ke + (3 * a + i) * 24;
         const double *H0 = Hm[3 * i], *H1 = Hm[3 * i + 1], *H2 = Hm[3 * i + 2];
@@ -186,8 +264,23 @@ int hex8_element(const Hex8Options *eo, const MaterialKernel *mat, const double 
       }
     }
   }
+  /* back to the node-major layout of the interface */
+  for (int a = 0; a < 8; a++)
+    for (int i = 0; i < 3; i++) fe[3 * a + i] = fc[i][a];
   if (info) info->nplastic = nplastic;
   return MAT_OK;
+
+fail_jac:
+  memset(fe, 0, 24 * sizeof(double));
+  if (tangent) memset(ke, 0, 24 * 24 * sizeof(double));
+  return MAT_ERR_JACOBIAN;
+}
+
+/* two instances of the kernel, with and without the tangent, each compiled for its case */
+int hex8_element(const Hex8Options *eo, const MaterialKernel *mat, const double X[8][3], const double u[8][3], const double *hn, double fe[24], double *ke, double *h, ElementInfo *info)
+{
+  if (ke) return hex8_element_impl(eo, mat, X, u, hn, fe, ke, h, info, 1);
+  return hex8_element_impl(eo, mat, X, u, hn, fe, NULL, h, info, 0);
 }
 
 /* ------------------------------------------------------------------------------------------ */

@@ -35,8 +35,8 @@ double J2YieldStress(const J2Params *mp, double ep, double *dsy)
   if (mp->law == HARDENING_SWIFT) {
     /* sigma_y = K (eps0 + ep)^n,  d sigma_y/d ep = n K (eps0 + ep)^(n-1) */
     const double x = mp->sweps0 + ep;
-    if (x > 0.0) {
-      sy = mp->swK * pow(x, mp->swn);
+    if (x > 0.0) { /* x^n = exp(n ln x): two cheaper calls than pow, the same to a few ulps */
+      sy = mp->swK * exp(mp->swn * log(x));
       h  = mp->swn * sy / x;
     } else { /* limit x -> 0+ (slope infinite for n < 1) */
       sy = mp->swn > 0.0 ? 0.0 : mp->swK;
@@ -57,23 +57,33 @@ void J2HistoryInit(double h[J2_NHIST])
   h[J2_HIST_EP] = 0.0;
 }
 
+/* sigma_y(ep) >= 0, decided without evaluating the power of the Swift law: for x = eps0 + ep > 0
+   K x^n has the sign of K; at x <= 0 J2YieldStress takes the limit (0 for n > 0, K for n = 0). */
+static int yield_nonnegative(const J2Params *mp, double ep)
+{
+  if (mp->law == HARDENING_SWIFT) {
+    const double x = mp->sweps0 + ep;
+    if (x > 0.0) return mp->swK >= 0.0;
+    return (mp->swn > 0.0 ? 0.0 : mp->swK) >= 0.0;
+  }
+  return mp->sy0 + mp->H * ep >= 0.0;
+}
+
 /* Scalar return map (radial return, EPO ch. 7):  r(dg) = q_tr - 3G dg - sigma_y(ep_n + dg) = 0, dg > 0.
    r(0) > 0 and r(q_tr/3G) = -sigma_y <= 0 bracket the root; Newton steps that leave the
    current bracket (or are not finite, e.g. an infinite Swift slope at ep = 0) are replaced
-   by bisection; maxit bounds the number of updates. Returns 0 on convergence with dg and
-   H' = d sigma_y/d ep at ep_n + dg. */
-static int return_map(const J2Params *mp, double q_tr, double ep_n, double *dg_out, double *Hp_out)
+   by bisection; maxit bounds the number of updates. sy_n, Hp_n: sigma_y and its slope at ep_n
+   (dg = 0, the first iterate), already evaluated by the caller's yield check. Returns 0 on
+   convergence with dg and H' = d sigma_y/d ep at ep_n + dg. */
+static int return_map(const J2Params *mp, double q_tr, double ep_n, double sy_n, double Hp_n, double *dg_out, double *Hp_out)
 {
   const double G3  = 3.0 * mp->G;
   const double tol = mp->rtol * q_tr;
-  double       lo = 0.0, hi = q_tr / G3, dg = 0.0, Hp;
-  {
-    const double syhi = J2YieldStress(mp, ep_n + hi, NULL);
-    if (!(syhi >= 0.0)) return 1; /* no bracket (softening to negative yield stress) */
-  }
+  double       lo = 0.0, hi = q_tr / G3, dg = 0.0, Hp = Hp_n, sy = sy_n;
+  if (!yield_nonnegative(mp, ep_n + hi)) return 1; /* no bracket (softening to negative yield stress) */
   for (int it = 0;; it++) {
-    const double sy = J2YieldStress(mp, ep_n + dg, &Hp);
-    const double r  = q_tr - G3 * dg - sy;
+    if (it > 0) sy = J2YieldStress(mp, ep_n + dg, &Hp);
+    const double r = q_tr - G3 * dg - sy;
     if (fabs(r) <= tol) break;
     if (it >= mp->maxit) return 1;
     if (r > 0.0) lo = dg;
@@ -92,17 +102,20 @@ static int return_map(const J2Params *mp, double q_tr, double ep_n, double *dg_o
   return 0;
 }
 
-/* (ln x - ln y)/(x - y) for x, y > 0, accurate also for x ~ y: with m = (x+y)/2,
-   t = (x-y)/(x+y):  ln x - ln y = 2 atanh(t), x - y = 2 m t  =>  atanh(t)/(m t),
-   series 1 + t^2/3 + t^4/5 for |t| < 1e-4 (truncation t^6/7 < 1e-24). */
-static inline double dlog_ratio(double x, double y)
+/* (ln x - ln y)/(x - y) for x, y > 0 from ex = ln x / 2, ey = ln y / 2 (already computed):
+   with m = (x+y)/2, t = (x-y)/(x+y):  ln x - ln y = 2 atanh(t), x - y = 2 m t, so the ratio is
+   atanh(t)/(m t) = (1 + t^2/3 + t^4/5 + t^6/7 + t^8/9 + ...)/m, the series used for
+   |t| < 1e-2 (truncation t^10/11 < 1e-21). Otherwise 2 (ex - ey)/(x - y): x - y is exact to
+   an ulp, and the difference of the logarithms has an absolute error of a few ulps of
+   max(|ln x|, |ln y|), relative to it at most about 1e-14 max(|ln x|, |ln y|) for |t| >= 1e-2. */
+static inline double dlog_ratio(double x, double y, double ex, double ey)
 {
-  const double m = 0.5 * (x + y), t = (x - y) / (x + y);
-  if (fabs(t) < 1e-4) {
+  const double t = (x - y) / (x + y);
+  if (fabs(t) < 1e-2) {
     const double t2 = t * t;
-    return (1.0 + t2 * (1.0 / 3.0 + 0.2 * t2)) / m;
+    return 2.0 * (1.0 + t2 * (1.0 / 3.0 + t2 * (0.2 + t2 * (1.0 / 7.0 + t2 / 9.0)))) / (x + y);
   }
-  return atanh(t) / (m * t);
+  return 2.0 * (ex - ey) / (x - y);
 }
 
 static void fail_outputs(const double hn[J2_NHIST], double tau[9], double *dtau, double h[J2_NHIST])
@@ -152,17 +165,21 @@ int J2Update(const J2Params *mp, const double F[9], const double hn[J2_NHIST], d
      D = K 1(x)1 + 2G c1 I_dev + c2 N(x)N,  elastic: c1 = 1, c2 = 0 */
   double c1 = 1.0, c2 = 0.0, dg = 0.0, n[3] = {0.0, 0.0, 0.0};
   int    isplastic = 0;
-  if (q_tr > 0.0 && q_tr - J2YieldStress(mp, ep_n, NULL) > 0.0) {
-    double Hp;
-    if (return_map(mp, q_tr, ep_n, &dg, &Hp)) {
-      fail_outputs(hn, tau, dtau, h);
-      return MAT_ERR_RETURNMAP;
+  if (q_tr > 0.0) {
+    double       Hp_n;
+    const double sy_n = J2YieldStress(mp, ep_n, &Hp_n);
+    if (q_tr - sy_n > 0.0) {
+      double Hp;
+      if (return_map(mp, q_tr, ep_n, sy_n, Hp_n, &dg, &Hp)) {
+        fail_outputs(hn, tau, dtau, h);
+        return MAT_ERR_RETURNMAP;
+      }
+      isplastic = 1;
+      for (int a = 0; a < 3; a++) n[a] = ed[a] / nrm;
+      c1 = 1.0 - 3.0 * G * dg / q_tr;
+      c2 = 6.0 * G * G * (dg / q_tr - 1.0 / (3.0 * G + Hp));
+      if (!isfinite(c2)) c2 = 6.0 * G * G * dg / q_tr; /* non-finite H': take 1/(3G+H') -> 0 */
     }
-    isplastic = 1;
-    for (int a = 0; a < 3; a++) n[a] = ed[a] / nrm;
-    c1 = 1.0 - 3.0 * G * dg / q_tr;
-    c2 = 6.0 * G * G * (dg / q_tr - 1.0 / (3.0 * G + Hp));
-    if (!isfinite(c2)) c2 = 6.0 * G * G * dg / q_tr; /* non-finite H': take 1/(3G+H') -> 0 */
   }
 
   /* principal Kirchhoff stress (Hencky law + radial return): tau_a = K ev + 2G (1 - 3G dg/q_tr) ed_a */
@@ -178,13 +195,22 @@ int J2Update(const J2Params *mp, const double F[9], const double hn[J2_NHIST], d
   /* history update */
   if (isplastic) {
     /* eps_e = eps_tr - dg sqrt(3/2) n; b_e = exp(2 eps_e) = Q diag(lam_a exp(-2 sqrt(3/2) dg n_a)) Q^T;
-       Cp^{-1} = F^{-1} b_e F^{-T} (exponential-map flow update) */
+       Cp^{-1} = F^{-1} b_e F^{-T} (exponential-map flow update; det F = J > 0 checked above) */
     double be[3], Fi[9], B[9], Y[9], C[9];
     for (int a = 0; a < 3; a++) be[a] = exp(2.0 * (e[a] - dg * s32 * n[a]));
     for (int i = 0; i < 3; i++)
       for (int j = i; j < 3; j++)
         B[3 * i + j] = B[3 * j + i] = Q[3 * i] * be[0] * Q[3 * j] + Q[3 * i + 1] * be[1] * Q[3 * j + 1] + Q[3 * i + 2] * be[2] * Q[3 * j + 2];
-    t3_inv(F, Fi);
+    const double iJ = 1.0 / J;
+    Fi[0] = (F[4] * F[8] - F[5] * F[7]) * iJ;
+    Fi[1] = (F[2] * F[7] - F[1] * F[8]) * iJ;
+    Fi[2] = (F[1] * F[5] - F[2] * F[4]) * iJ;
+    Fi[3] = (F[5] * F[6] - F[3] * F[8]) * iJ;
+    Fi[4] = (F[0] * F[8] - F[2] * F[6]) * iJ;
+    Fi[5] = (F[2] * F[3] - F[0] * F[5]) * iJ;
+    Fi[6] = (F[3] * F[7] - F[4] * F[6]) * iJ;
+    Fi[7] = (F[1] * F[6] - F[0] * F[7]) * iJ;
+    Fi[8] = (F[0] * F[4] - F[1] * F[3]) * iJ;
     t3_mul(Fi, B, Y);
     t3_mult(Y, Fi, C);
     h[0] = C[0];
@@ -200,44 +226,52 @@ int J2Update(const J2Params *mp, const double F[9], const double hn[J2_NHIST], d
   if (plastic) *plastic = isplastic;
   if (!dtau) return MAT_OK;
 
-  /* Tangent d tau / d F_kL, in the eigenbasis of b_tr:
-     d b_tr = dF Gm + (dF Gm)^T; for dF = e_k (x) E_L:  (Q^T db Q)_ab = u_a w_b + w_a u_b with
-     u_a = Q_ka, w_a = sum_n Gm_Ln Q_na = (Gm Q)_La.
-     d eps_ab = 1/2 Gamma_ab (Q^T db Q)_ab, Gamma_ab = (ln lam_a - ln lam_b)/(lam_a - lam_b)
-     (Daleckii-Krein), Gamma_aa = 1/lam_a.  d tau' = D : d eps', d tau = Q d tau' Q^T. */
-  double GQ[9];
+  /* Tangent d tau / d F_kL, in the eigenbasis q_a (columns of Q) of b_tr.
+     d b_tr = dF Gm + (dF Gm)^T; for dF = e_k (x) E_L:  X_ab = (Q^T db Q)_ab = u_a w_b + w_a u_b,
+     u_a = Q_ka, w_a = (Gm Q)_La.  d eps_ab = 1/2 Gamma_ab X_ab with Gamma_ab = (ln lam_a -
+     ln lam_b)/(lam_a - lam_b) (Daleckii-Krein), Gamma_aa = 1/lam_a; d tau' = D : d eps' on the
+     diagonal (D_ab = K - 2G c1/3 + 2G c1 delta_ab + c2 n_a n_b), and the off-diagonal entries
+     d tau'_ab = (tau_a - tau_b)/(lam_a - lam_b) X_ab = 2G c1 (1/2 Gamma_ab) X_ab. Then
+     d tau = Q d tau' Q^T:
+       d tau_ij/d F_kL = sum_a N_a,ij P_a,kL + sum_{a<b} M_ab,ij g_ab S_ab,kL
+     with N_a = q_a (x) q_a, M_ab = q_a (x) q_b + q_b (x) q_a (symmetric in ij),
+       V_b,kL = Q_kb w_b / lam_b        (= d eps'_bb for dF = e_k (x) E_L),
+       P_a,kL = sum_b D_ab V_b,kL       (= d tau'_aa),
+       S_ab,kL = Q_ka w_b + w_a Q_kb    (= X_ab),   g_ab = G c1 Gamma_ab.
+     Six rank-one terms on the 6 x 9 array of the independent ij (00 11 22 01 12 02), copied to
+     the symmetric rows. */
+  double GQ[9]; /* GQ[3L+a] = (Gm Q)_La = w_a for the column L */
   t3_mul(Gm, Q, GQ);
-  const double g01 = G * c1 * dlog_ratio(lam[0], lam[1]); /* 2G c1 * (1/2 Gamma_ab) */
-  const double g02 = G * c1 * dlog_ratio(lam[0], lam[2]);
-  const double g12 = G * c1 * dlog_ratio(lam[1], lam[2]);
+  const double G2c1 = 2.0 * G * c1, Kd = K - G2c1 / 3.0;
+  const double g01 = G * c1 * dlog_ratio(lam[0], lam[1], e[0], e[1]);
+  const double g02 = G * c1 * dlog_ratio(lam[0], lam[2], e[0], e[2]);
+  const double g12 = G * c1 * dlog_ratio(lam[1], lam[2], e[1], e[2]);
   const double il[3] = {1.0 / lam[0], 1.0 / lam[1], 1.0 / lam[2]};
-  const double G2c1 = 2.0 * G * c1;
-  for (int k = 0; k < 3; k++) {
-    const double *u = Q + 3 * k;
+  double       R[6][9]; /* rows: P_0, P_1, P_2, g01 S_01, g12 S_12, g02 S_02 (kL = 3k + L) */
+  for (int k = 0; k < 3; k++)
     for (int L = 0; L < 3; L++) {
-      const double *w = GQ + 3 * L;
-      /* diagonal of d eps' : 1/2 Gamma_aa * 2 u_a w_a */
-      const double d0 = u[0] * w[0] * il[0], d1 = u[1] * w[1] * il[1], d2 = u[2] * w[2] * il[2];
-      const double tr = d0 + d1 + d2, nd = n[0] * d0 + n[1] * d1 + n[2] * d2;
-      const double vol = (K - G2c1 / 3.0) * tr;
-      double       X[9];
-      X[0] = vol + G2c1 * d0 + c2 * n[0] * nd;
-      X[4] = vol + G2c1 * d1 + c2 * n[1] * nd;
-      X[8] = vol + G2c1 * d2 + c2 * n[2] * nd;
-      X[1] = X[3] = g01 * (u[0] * w[1] + w[0] * u[1]);
-      X[2] = X[6] = g02 * (u[0] * w[2] + w[0] * u[2]);
-      X[5] = X[7] = g12 * (u[1] * w[2] + w[1] * u[2]);
-      /* Y = Q X, T = Y Q^T (symmetric) */
-      double Y[9];
-      t3_mul(Q, X, Y);
-      const int col = 3 * k + L;
-      for (int i = 0; i < 3; i++)
-        for (int j = i; j < 3; j++) {
-          const double v = Y[3 * i] * Q[3 * j] + Y[3 * i + 1] * Q[3 * j + 1] + Y[3 * i + 2] * Q[3 * j + 2];
-          dtau[(3 * i + j) * 9 + col] = v;
-          dtau[(3 * j + i) * 9 + col] = v;
-        }
+      const int     kL = 3 * k + L;
+      const double *u = Q + 3 * k, *w = GQ + 3 * L;
+      const double  v0 = u[0] * w[0] * il[0], v1 = u[1] * w[1] * il[1], v2 = u[2] * w[2] * il[2];
+      const double  vol = Kd * (v0 + v1 + v2), nv = c2 * (n[0] * v0 + n[1] * v1 + n[2] * v2);
+      R[0][kL] = vol + G2c1 * v0 + n[0] * nv;
+      R[1][kL] = vol + G2c1 * v1 + n[1] * nv;
+      R[2][kL] = vol + G2c1 * v2 + n[2] * nv;
+      R[3][kL] = g01 * (u[0] * w[1] + w[0] * u[1]);
+      R[4][kL] = g12 * (u[1] * w[2] + w[1] * u[2]);
+      R[5][kL] = g02 * (u[0] * w[2] + w[0] * u[2]);
     }
+  /* the coefficients of the six rows for each independent ij */
+  static const int I6[6] = {0, 1, 2, 0, 1, 0}, J6[6] = {0, 1, 2, 1, 2, 2};
+  for (int r = 0; r < 6; r++) {
+    const int    i = I6[r], j = J6[r];
+    const double qi0 = Q[3 * i], qi1 = Q[3 * i + 1], qi2 = Q[3 * i + 2], qj0 = Q[3 * j], qj1 = Q[3 * j + 1], qj2 = Q[3 * j + 2];
+    const double a0 = qi0 * qj0, a1 = qi1 * qj1, a2 = qi2 * qj2;
+    const double m01 = qi0 * qj1 + qi1 * qj0, m12 = qi1 * qj2 + qi2 * qj1, m02 = qi0 * qj2 + qi2 * qj0;
+    double      *row = dtau + 9 * (3 * i + j);
+    for (int kL = 0; kL < 9; kL++) row[kL] = a0 * R[0][kL] + a1 * R[1][kL] + a2 * R[2][kL] + m01 * R[3][kL] + m12 * R[4][kL] + m02 * R[5][kL];
+    if (i != j)
+      for (int kL = 0; kL < 9; kL++) dtau[9 * (3 * j + i) + kL] = row[kL];
   }
   return MAT_OK;
 }

@@ -251,6 +251,7 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
   PetscCall(PetscMemzero(pb, sizeof(*pb)));
   pb->comm           = comm;
   pb->lu_ordering    = LU_ORDERING_ND;
+  pb->assembly_coo   = PETSC_TRUE; /* coordinate assembly by default: the faster Jacobian (doc/performance.md) */
   pb->fault_nan_load = -1;
   PetscCallMPI(MPI_Comm_rank(comm, &pb->rank));
   PetscCallMPI(MPI_Comm_size(comm, &pb->size));
