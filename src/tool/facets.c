@@ -10,14 +10,15 @@
 
    Projection (closest): the facet of the closest point by the hierarchy (ties: the smallest facet
    index, so that the result is independent of the traversal and of a hint). Smoothed (default):
-   the contact normal is the normalised interpolation m(u, v) of the facet's corner normals (the
-   angle-weighted average of the facet normals around the vertex, split at edges sharper than the
-   feature angle), continuous across smooth edges, and the point is found along that field:
-   y = x(u, v) + g m(u, v), by Newton on (u, v, g) from the closest point, walking to the neighbour
-   across the edge the solution leaves by. Raw (-smooth 0) or where the field gives no point: the
-   closest point with the (interpolated or facet) normal there. A closest point on an open edge of
-   the surface with y beside it (beyond the edge in the facet's plane by more than 1e-9 of the
-   facet's size) is no contact: the patch is skipped. */
+   each facet is Nagata's quadratic patch through its corner normals; every patch within reach of
+   the closest triangle is a candidate, the closest point of each patch is found by Newton (or on
+   its edges), and the closest candidate wins; where two candidates are stationary points (the
+   foot of y inside the patch, or on its edge) whose distances differ by less than FACETS_TIE of
+   the surface's size (a point inside the crease between two patches, on a symmetry plane through
+   the edge, or at a vertex), the smaller facet index wins, so that the round-off of y cannot move
+   the result from one patch to the other. A closest point on an open edge of the surface with y
+   beside it (beyond the edge in the facet's plane by more than 1e-9 of the facet's size) is no
+   contact: the patch is skipped. */
 #include "facets.h"
 
 #include <float.h>
@@ -208,6 +209,22 @@ typedef struct {
 
 static inline int Better(double d2, int f, const Best *b) { return d2 < b->d2 || (d2 == b->d2 && f < b->f); }
 
+/* Ties of the smoothed projection: two stationary points (each the foot of y on its patch) whose
+   distances differ by less than FACETS_TIE of the surface's size are equally close (a point inside
+   the crease between two patches, e.g. on a symmetry plane through their edge, or at a vertex,
+   whose distances from either side differ by round-off only): the smaller facet index wins, so
+   that the round-off of y (another partition, another summation order) cannot move the result
+   from one patch to the other, nor the contact frame's chord of the first contact with it */
+#define FACETS_TIE 1e-10
+
+/* the candidates' radius of a smoothed surface: every patch that can be within the tie band of the
+   closest one, from the distance d2 (squared) of a plane triangle */
+static inline double CandidateRadius2(const FacetsData *m, double d2)
+{
+  const double r = sqrt(d2) + 2.0 * m->dev + FACETS_TIE * m->L;
+  return r * r * (1.0 + 1e-12);
+}
+
 static inline double BoxDist2(const FacetsNode *n, const double y[3])
 {
   double s = 0.0;
@@ -230,7 +247,7 @@ static void TreeClosestCollect(const FacetsData *m, const double y[3], Best *b, 
   if (!m->nnode) return;
   if (list) {
     *nl = 0;
-    R2  = b->d2 < HUGE_VAL ? (sqrt(b->d2) + 2.0 * m->dev) * (sqrt(b->d2) + 2.0 * m->dev) * (1.0 + 1e-12) : HUGE_VAL;
+    R2  = b->d2 < HUGE_VAL ? CandidateRadius2(m, b->d2) : HUGE_VAL;
   }
   stack[ns++] = 0;
   while (ns) {
@@ -244,7 +261,7 @@ static void TreeClosestCollect(const FacetsData *m, const double y[3], Best *b, 
         if (Better(d2, k, b)) {
           b->d2 = d2;
           b->f  = k;
-          if (list) R2 = (sqrt(d2) + 2.0 * m->dev) * (sqrt(d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+          if (list) R2 = CandidateRadius2(m, d2);
           else R2 = d2;
         }
         if (list && d2 <= R2 && *nl < 256) {
@@ -448,7 +465,7 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
   if (!m->gcap || !(b->d2 < HUGE_VAL)) return 1;
   if (list) {
     *nl = 0;
-    R2  = (sqrt(b->d2) + 2.0 * m->dev) * (sqrt(b->d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+    R2  = CandidateRadius2(m, b->d2);
   }
   {
     const double r = sqrt(R2) * (1.0 + 1e-9) + 1e-12 * m->L; /* outwards of the rounding of y -+ r */
@@ -496,7 +513,7 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
           if (Better(d2, k, b)) {
             b->d2 = d2;
             b->f  = k;
-            if (list) R2 = (sqrt(d2) + 2.0 * m->dev) * (sqrt(d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+            if (list) R2 = CandidateRadius2(m, d2);
             else R2 = d2;
           }
           if (list && d2 <= R2) {
@@ -622,21 +639,45 @@ static double PatchClosestLocal(const FacetsData *m, int f, const double y[3], d
   return best;
 }
 
+/* an edge-held closest point of facet f's patch that is stationary all the same: y - x normal to
+   the patch there (tangential offset below 1e-9 of the facet's size; the foot of y on the edge) */
+static int Stationary(const FacetsData *m, int f, const double y[3], double u, double v)
+{
+  double x[3], xu[3], xv[3], n[3], r[3], P0[3], P1[3], P2[3];
+  FacetEvalLocal(m, f, u, v, x, xu, xv, NULL, NULL, NULL);
+  Cross(xu, xv, n);
+  const double ln = Norm(n);
+  if (!(ln > 0.0)) return 0;
+  for (int i = 0; i < 3; i++) {
+    n[i] /= ln;
+    r[i] = y[i] - x[i];
+  }
+  const double rn = Dot(r, n), t2 = Dot(r, r) - rn * rn;
+  Corner(m, f, 0, P0);
+  Corner(m, f, 1, P1);
+  Corner(m, f, 2, P2);
+  const double hf2 = fmax(Dist2(P0, P1), fmax(Dist2(P1, P2), Dist2(P2, P0)));
+  return t2 <= 1e-18 * hf2;
+}
+
 /* The closest point from the hierarchy's answer b (the closest plane triangle). Raw facets: that
-   triangle. Smoothed: every facet whose triangle lies within sqrt(b) + 2 dev of y (dev: the largest
-   distance of a patch from its triangle) is a candidate; on each, the closest point of its patch;
-   the smallest distance wins (ties: the smallest facet index). A point beside an open edge (its
-   tangential offset above 1e-9 of the facet's size) is no contact (1). */
+   triangle. Smoothed: every facet whose triangle lies within sqrt(b) + 2 dev + tie of y (dev: the
+   largest distance of a patch from its triangle) is a candidate; on each, the closest point of its
+   patch; the smallest distance wins (equal distances: the smaller facet index), except that among
+   two or more stationary points within the tie band of the smallest distance the smallest facet
+   index wins (FACETS_TIE). A point beside an open edge (its tangential offset above 1e-9 of the
+   facet's size) is no contact (1). */
 static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], double L, const Best *b, Best *list, const int *nl, PatchCandidate *c)
 {
   double u, v, x[3], xu[3], xv[3], P0[3], P1[3], P2[3];
   int    reg, f = b->f;
   TriClosest(m, f, y, &u, &v, &reg);
   if (m->smooth) {
-    Best         bb = {HUGE_VAL, INT_MAX}, tmp;
-    int          edge = -1, nc = 0;
-    const double r  = sqrt(b->d2) + 2.0 * m->dev, r2 = r * r * (1.0 + 1e-12);
-    for (int k = 0; k < *nl; k++) /* the candidates within sqrt(b) + 2 dev, by distance, then index */
+    Best         tmp;
+    double       cd[256], cu[256], cv[256], dmin = HUGE_VAL;
+    int          ce[256], cs[256], edge = -1, nc = 0, ne = 0, win = -1, anys = 0;
+    const double r2 = CandidateRadius2(m, b->d2), tie = FACETS_TIE * m->L;
+    for (int k = 0; k < *nl; k++) /* the candidates within sqrt(b) + 2 dev + tie, by distance, then index */
       if (list[k].d2 <= r2) {
         int j = nc++;
         tmp   = list[k];
@@ -646,18 +687,26 @@ static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], 
         }
         list[j] = tmp;
       }
-    for (int k = 0; k < nc; k++) {
-      double uk = 0.0, vk = 0.0;
-      int    ek = -1;
-      if (sqrt(list[k].d2) - m->dev > sqrt(bb.d2) * (1.0 + 1e-12)) break; /* no patch farther on can be closer */
-      const double d2 = PatchClosestLocal(m, list[k].f, y, &uk, &vk, &ek);
-      if (Better(d2, list[k].f, &bb)) {
-        bb.d2 = d2;
-        bb.f  = list[k].f;
-        u     = uk;
-        v     = vk;
-        edge  = ek;
-      }
+    for (int k = 0; k < nc; k++, ne++) {
+      if (sqrt(list[k].d2) - m->dev > (dmin + tie) * (1.0 + 1e-12)) break; /* no patch farther on can be within the tie band */
+      ce[k] = -1;
+      cd[k] = sqrt(PatchClosestLocal(m, list[k].f, y, &cu[k], &cv[k], &ce[k]));
+      cs[k] = ce[k] < 0 || Stationary(m, list[k].f, y, cu[k], cv[k]);
+      if (cd[k] < dmin) dmin = cd[k];
+    }
+    for (int k = 0; k < ne; k++) {
+      if (cd[k] <= dmin + tie && cs[k]) anys++;
+      if (win < 0 || cd[k] < cd[win] || (cd[k] == cd[win] && list[k].f < list[win].f)) win = k;
+    }
+    if (anys > 1) /* two stationary points within the tie band: the smallest facet index */
+      for (int k = 0; k < ne; k++)
+        if (cd[k] <= dmin + tie && cs[k] && (!(cd[win] <= dmin + tie && cs[win]) || list[k].f < list[win].f)) win = k;
+    Best bb = {HUGE_VAL, INT_MAX};
+    if (win >= 0) {
+      bb.f = list[win].f;
+      u    = cu[win];
+      v    = cv[win];
+      edge = ce[win];
     }
     if (bb.f != INT_MAX) f = bb.f;
     reg = edge < 0 ? 0 : 1 + edge;
