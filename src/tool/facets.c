@@ -546,6 +546,16 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
    within r), exactly as the hierarchy does, without the grid or the hierarchy: a node near the
    surface touches its own few facets, whatever the tool's size. */
 
+/* a hint to the processor that *a will be read soon (no effect on the results) */
+static inline void Prefetch(const void *a)
+{
+#if defined(__GNUC__)
+  __builtin_prefetch(a);
+#else
+  (void)a;
+#endif
+}
+
 /* squared distance between the segments p1 q1 and p2 q2 (Ericson 5.1.9; non-degenerate segments) */
 static double SegSeg2(const double p1[3], const double q1[3], const double p2[3], const double q2[3])
 {
@@ -733,7 +743,11 @@ static int LocalClosestCollect(const FacetsData *m, const double y[3], Best *b, 
   if (sqrt(b->d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) >= (double)m->star[f0].clear) return 1;
   if (list) *nl = 0;
   {
-    for (int j = m->star[f0].start; j < m->star[f0 + 1].start; j++) {
+    const int j0 = m->star[f0].start, j1 = m->star[f0 + 1].start;
+    for (int j = j0; j < j1; j++) Prefetch(&m->F[3 * m->st[j]]); /* the star's facets, then their vertices: their cache misses overlap */
+    for (int j = j0; j < j1; j++)
+      for (int c = 0; c < 3; c++) Prefetch(&m->V[3 * m->F[3 * m->st[j] + c]]);
+    for (int j = j0; j < j1; j++) {
       const int k = m->st[j];
       int       q = 0;
       double    d2;
@@ -1006,7 +1020,14 @@ static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, 
   const FacetsData *m = (const FacetsData *)p->data;
   double            u, v;
   int               reg, f = FacetsDecode(m, hxi, heta, &u, &v), nl = 0, ns = 1;
-  Best              b = {TriClosest(m, f, y, &u, &v, &reg), f}, list[256];
+  Best              b;
+  Best              list[256];
+  if (m->star) {
+    Prefetch(&m->star[f]);
+    Prefetch(&m->adj[3 * f]);
+  }
+  b.d2 = TriClosest(m, f, y, &u, &v, &reg);
+  b.f  = f;
   Seen              seen[SEEN_MAX] = {{f, 0, b.d2}};
   for (int step = 0; step < 64; step++) {
     int moved = 0;
