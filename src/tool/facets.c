@@ -1013,7 +1013,8 @@ static int FacetsClosest(const Patch *p, const double y[3], double maxdist, doub
 }
 
 /* The same result as FacetsClosest: the hint's facet and a greedy walk over its neighbours give a
-   bound, the grid's cells within that bound prove (or improve) it; where the bound spans more
+   facet and a bound; the facet's star proves (or improves) it when the facet's clearance allows
+   (LocalClosestCollect), else the grid's cells within that bound; where the bound spans more
    cells, the hierarchy from its root with that bound (a walk that ends beyond maxdist: maxdist) */
 static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, double L, double hxi, double heta, PatchCandidate *c)
 {
