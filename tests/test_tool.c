@@ -1582,6 +1582,92 @@ static void test_facets_clearance(void)
   }
 }
 
+/* ties of the smoothed projection: points inside the crease of two Nagata patches (a sphere of
+   512 triangles, below the midpoints of 40 edges), on the surface where both feet are equally far
+   (found by bisection across the edge): a shift of the point by 1e-13 either way across it gives the
+   same facet, the smaller index, and the strict minimum would have given both */
+static void test_facets_ties(void)
+{
+  PetscInt       n;
+  PetscErrorCode ierr;
+  char           opts[512], path[256];
+  snprintf(path, sizeof(path), "%s/facets_tie_%d.stl", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid());
+  write_sphere_stl(path, 1.0, 8);
+  snprintf(opts, sizeof(opts), "-tool_names s -tool_s_file %s -tool_s_file_format stl -tool_s_smooth 1", path);
+  Tool *T = facets_tools(opts, &n, &ierr);
+  if (!T) {
+    TU_CHECK(0, "facets ties: %s", errmsg);
+    remove(path);
+    return;
+  }
+  const Patch      *p = &T[0].patch[0];
+  const FacetsData *m = (const FacetsData *)p->data;
+  const double      sh[3] = {0, 0, 0};
+  int               nt = 0, same = 1, smaller = 1, sides = 0;
+  for (int f = 0; f < m->nf && nt < 40; f += 5) {
+    const int g = m->adj[3 * f];
+    if (g < 0) continue;
+    double a[3], b[3], mid[3], t[3], o[3], lo, hi;
+    for (int i = 0; i < 3; i++) {
+      a[i]   = m->V[3 * m->F[3 * f] + i];
+      b[i]   = m->V[3 * m->F[3 * f + 1] + i];
+      mid[i] = 0.5 * (a[i] + b[i]);
+    }
+    const double lm = nrm(mid); /* inside the sphere, below the edge's midpoint, and across the edge */
+    double       e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    t[0] = mid[1] * e[2] - mid[2] * e[1];
+    t[1] = mid[2] * e[0] - mid[0] * e[2];
+    t[2] = mid[0] * e[1] - mid[1] * e[0];
+    const double lt = nrm(t);
+    for (int i = 0; i < 3; i++) {
+      o[i] = mid[i] * (1.0 - 2e-3) / lm * lm;
+      t[i] /= lt;
+    }
+    lo = -0.05 * nrm(e);
+    hi = 0.05 * nrm(e);
+    double y[3], dl, dh;
+    int    sf, sg;
+#define TIE_AT(s_, out_)                                                                 \
+  do {                                                                                   \
+    for (int i = 0; i < 3; i++) y[i] = o[i] + (s_) * t[i];                               \
+    out_ = sqrt(FacetsPatchDistance2(p, f, y, &sf)) - sqrt(FacetsPatchDistance2(p, g, y, &sg)); \
+  } while (0)
+    TIE_AT(lo, dl);
+    TIE_AT(hi, dh);
+    if (!(dl * dh < 0)) continue;
+    for (int it = 0; it < 200 && hi - lo > 1e-15; it++) {
+      double dm;
+      const double s = 0.5 * (lo + hi);
+      TIE_AT(s, dm);
+      if ((dm < 0) == (dl < 0)) lo = s, dl = dm;
+      else hi = s;
+    }
+    TIE_AT(0.5 * (lo + hi), dl);
+#undef TIE_AT
+    if (!sf || !sg) continue; /* both feet inside their patches: the crease from inside */
+    nt++;
+    int fs[2] = {-1, -2}, strict[2] = {-1, -1};
+    for (int k = 0; k < 2; k++) {
+      double     yk[3], u, v;
+      Projection pr;
+      for (int i = 0; i < 3; i++) yk[i] = y[i] + (k ? 1e-13 : -1e-13) * t[i];
+      if (ToolProject(&T[0], sh, yk, PETSC_INFINITY, &pr)) {
+        same = 0;
+        continue;
+      }
+      fs[k] = FacetsOfParameters(p, pr.xi, pr.eta, &u, &v);
+      int s1, s2;
+      strict[k] = FacetsPatchDistance2(p, f, yk, &s1) < FacetsPatchDistance2(p, g, yk, &s2) ? f : g; /* the strict minimum */
+    }
+    sides += strict[0] != strict[1];
+    if (fs[0] != fs[1]) same = 0;
+    if (fs[0] != (f < g ? f : g)) smaller = 0;
+  }
+  TU_CHECK(nt >= 10 && same && smaller && sides > 0, "facets: %d points inside the crease of two smoothed patches, equally far from both: shifted by 1e-13 across it, the same facet (the smaller index) on both sides (the strict minimum changes side at %d of them)", nt, sides);
+  ToolsDestroy(n, &T);
+  remove(path);
+}
+
 static void test_facets_sphere(void)
 {
   PetscInt       n;
@@ -1814,6 +1900,7 @@ int main(int argc, char **argv)
   test_facets_readers();
   test_facets_errors();
   test_facets_clearance();
+  test_facets_ties();
   test_facets_sphere();
   test_facets_hint_large();
   PetscCall(PetscOptionsClear(NULL));

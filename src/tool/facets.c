@@ -1203,6 +1203,16 @@ void FacetsEncodeForTest(int f, double u, double v, double *xi, double *eta) { F
 
 double FacetsTriTriDistance2(const double A[3][3], const double B[3][3]) { return TriTri2(A, B); }
 
+double FacetsPatchDistance2(const Patch *p, int f, const double y[3], int *stationary)
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  double            u, v;
+  int               e = -1;
+  const double      d2 = PatchClosestLocal(m, f, y, &u, &v, &e);
+  *stationary           = e < 0 || Stationary(m, f, y, u, v);
+  return d2;
+}
+
 double FacetsClearance(const Patch *p, int f, int *nstar, const int **star)
 {
   const FacetsData *m = (const FacetsData *)p->data;

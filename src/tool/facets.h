@@ -81,6 +81,8 @@ void FacetsEncodeForTest(int f, double u, double v, double *xi, double *eta);
 /* for the tests: the distance of two triangles (squared), a facet's clearance and star, and
    whether the star of facet f alone decides the projection of y (the local certificate) */
 double FacetsTriTriDistance2(const double A[3][3], const double B[3][3]);
+/* for the tests: the squared distance of y from facet f's (smoothed) patch, and whether it is a stationary point */
+double FacetsPatchDistance2(const Patch *p, int f, const double y[3], int *stationary);
 double FacetsClearance(const Patch *p, int f, int *nstar, const int **star);
 int    FacetsStarCertifies(const Patch *p, int f, const double y[3]);
 int FacetsOfParameters(const Patch *p, double xi, double eta, double *u, double *v);
