@@ -1,5 +1,7 @@
 /* Projection cost on a meshed tool surface (scripts/bench_tool_facets.py builds and runs this):
    bench_tool_facets -tool_names s -tool_s_file sphere.stl [-tool_s_smooth 0] -bench_queries N
+   or, for the hinted node passes alone (medians of interleaved runs, doc/tools.md "Cost"):
+   bench_tool_facets -tool_names s -tool_s_file sphere.stl [-tool_s_smooth 0] -bench_node_passes BAND [-bench_reps 5]
    prints one line: facets, build seconds, bytes per facet, ns per ToolProject and per
    ToolProjectHint (hint: the projection of a point 1e-3 R away, as a node's previous pairing),
    the queries in random order, then the same in a spatially coherent order (sorted along a
@@ -104,11 +106,24 @@ int main(int argc, char **argv)
   PetscInt n, nq = 200000;
   Tool    *T;
   double   t0, tb, acc = 0, sh[3] = {0, 0, 0};
+  PetscReal band = 0;
+  PetscInt  reps = 5;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-bench_queries", &nq, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-bench_node_passes", &band, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-bench_reps", &reps, NULL));
   t0 = now();
   PetscCall(ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T));
   tb                  = now() - t0;
+  if (band > 0) { /* only the hinted node passes at this band: -bench_reps sets of 10 passes of 20000 nodes */
+    const double R = 0.5 * (T[0].bbox[1] - T[0].bbox[0]);
+    printf("build %.2f s; hinted node passes at band %g, ns per node and pass:", tb, (double)band);
+    for (PetscInt r = 0; r < reps; r++) printf(" %.0f", NodePasses(&T[0], R, band, 20000, 11, 1, &acc));
+    printf(" (%g)\n", acc);
+    PetscCall(ToolsDestroy(n, &T));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   const FacetsData *m = (const FacetsData *)T[0].patch[0].data;
   const double      R = 0.5 * (T[0].bbox[1] - T[0].bbox[0]);
   double           *Y, *Z;

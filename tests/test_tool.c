@@ -1435,7 +1435,7 @@ static void test_facets_hint_large(void)
       const Patch      *p = &T[0].patch[0];
       const FacetsData *m = (const FacetsData *)p->data;
       const double      hf = 2.2 / ks[kk]; /* about a facet's size */
-      int               same = 1, brute = 1, nq = 0, nbrute = 0;
+      int               same = 1, brute = 1, nq = 0, nbrute = 0, ncert = 0;
       for (int node = 0; node < 60; node++) {
         double       y[3], dir[3], l;
         const double th = uni(0, PI), ph = uni(0, 2 * PI), band = node % 3 == 0 ? 1e-4 : (node % 3 == 1 ? 1e-2 : 0.05);
@@ -1453,6 +1453,11 @@ static void test_facets_hint_large(void)
           Projection pr, ph_;
           const int  r0 = ToolProject(&T[0], sh, y, maxdist, &pr), r1 = ToolProjectHint(&T[0], sh, y, maxdist, has ? &prev : NULL, &ph_);
           nq++;
+          {
+            double yr[3], d2t;
+            for (int i = 0; i < 3; i++) yr[i] = y[i] - sh[i];
+            ncert += FacetsStarCertifies(p, FacetsTreeClosest(p, yr, &d2t), yr);
+          }
           if (r0 != r1 || (!r0 && (ph_.patch != pr.patch || ph_.xi != pr.xi || ph_.eta != pr.eta || ph_.gap != pr.gap || ph_.n[0] != pr.n[0] || ph_.n[1] != pr.n[1] || ph_.n[2] != pr.n[2]))) same = 0;
           if (!smooth && !r0 && kk == 0) {
             double yr[3], d2b, u, v;
@@ -1466,11 +1471,200 @@ static void test_facets_hint_large(void)
           }
         }
       }
-      TU_CHECK(same, "facets sphere (%d triangles, %s): ToolProjectHint on %d queries along 60 node paths (hint: the node's previous result) gives ToolProject's result bit for bit", m->nf, smooth ? "smoothed" : "raw", nq);
+      TU_CHECK(same && ncert > nq / 4, "facets sphere (%d triangles, %s): ToolProjectHint on %d queries along 60 node paths (hint: the node's previous result) gives ToolProject's result bit for bit (%d of them decided by the closest facet's star alone)", m->nf, smooth ? "smoothed" : "raw", nq, ncert);
       if (!smooth && kk == 0) TU_CHECK(brute && nbrute > 100, "facets sphere (%d triangles, raw): the hinted facet is the brute-force closest on %d points", m->nf, nbrute);
       ToolsDestroy(n, &T);
     }
   }
+  remove(path);
+}
+
+/* squared distance of two triangles by sampling both (barycentric grids of n + 1 points a side):
+   at least the exact distance, at most about the grid's spacing more */
+static double tritri_sampled(const double A[3][3], const double B[3][3], int n)
+{
+  double best = HUGE_VAL;
+  for (int i = 0; i <= n; i++)
+    for (int j = 0; i + j <= n; j++) {
+      double a[3];
+      for (int c = 0; c < 3; c++) a[c] = A[0][c] + (A[1][c] - A[0][c]) * i / n + (A[2][c] - A[0][c]) * j / n;
+      for (int k = 0; k <= n; k++)
+        for (int l = 0; k + l <= n; l++) {
+          double d2 = 0;
+          for (int c = 0; c < 3; c++) {
+            const double e = a[c] - (B[0][c] + (B[1][c] - B[0][c]) * k / n + (B[2][c] - B[0][c]) * l / n);
+            d2 += e * e;
+          }
+          if (d2 < best) best = d2;
+        }
+    }
+  return best;
+}
+
+/* the local certificate's pieces: the distance of two triangles against sampling (apart, parallel,
+   coplanar, crossing), and each facet's clearance on a sphere a lower bound of its distance to
+   every facet outside its star (brute force), not far below the sampled distance */
+static void test_facets_clearance(void)
+{
+  double worst = 0, over = 0;
+  int    ncross = 0, okcross = 1;
+  for (int k = 0; k < 300; k++) {
+    double A[3][3], B[3][3];
+    const int kind = k % 4; /* 0: random; 1: B a shifted copy of A (parallel); 2: coplanar; 3: B through A */
+    for (int v = 0; v < 3; v++)
+      for (int c = 0; c < 3; c++) A[v][c] = uni(-1, 1);
+    for (int v = 0; v < 3; v++)
+      for (int c = 0; c < 3; c++) B[v][c] = kind == 1 ? A[v][c] + (c == 2 ? 0.3 : 0.5) : uni(-1, 1) + (kind == 0 ? 1.0 : 0.0);
+    if (kind == 2)
+      for (int v = 0; v < 3; v++) A[v][2] = B[v][2] = 0.25, B[v][0] += 1.2;
+    if (kind == 3) { /* the segment B0 B1 through A's centroid, across its plane */
+      double g[3], n[3], e1[3], e2[3];
+      for (int c = 0; c < 3; c++) {
+        g[c]  = (A[0][c] + A[1][c] + A[2][c]) / 3;
+        e1[c] = A[1][c] - A[0][c];
+        e2[c] = A[2][c] - A[0][c];
+      }
+      n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+      n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+      n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      const double ln = nrm(n);
+      for (int c = 0; c < 3; c++) {
+        B[0][c] = g[c] + 0.4 * n[c] / ln;
+        B[1][c] = g[c] - 0.4 * n[c] / ln;
+      }
+      ncross++;
+      okcross = okcross && FacetsTriTriDistance2(A, B) == 0.0;
+      continue;
+    }
+    const double d = sqrt(FacetsTriTriDistance2(A, B)), ds = sqrt(tritri_sampled(A, B, 40));
+    over  = fmax(over, d - ds);             /* the exact distance above a sampled one: wrong */
+    worst = fmax(worst, (ds - d) / 0.1);    /* below it by more than about the spacing (2.8 / 40): wrong */
+  }
+  TU_CHECK(over <= 1e-12 && worst <= 1.0 && okcross && ncross > 0, "facets: distance of two triangles against sampling on 225 pairs (never above it: %.1e; below it by %.2f of the sampling's spacing at most) and 0 for %d crossing pairs", over, worst, ncross);
+  {
+    PetscInt       n;
+    PetscErrorCode ierr;
+    char           opts[512], path[256];
+    snprintf(path, sizeof(path), "%s/facets_clear_%d.stl", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid());
+    write_sphere_stl(path, 1.0, 8);
+    snprintf(opts, sizeof(opts), "-tool_names s -tool_s_file %s -tool_s_file_format stl -tool_s_smooth 0", path);
+    Tool *T = facets_tools(opts, &n, &ierr);
+    if (!T) TU_CHECK(0, "facets clearance sphere: %s", errmsg);
+    else {
+      const Patch      *p = &T[0].patch[0];
+      const FacetsData *m = (const FacetsData *)p->data;
+      double            low = 1.0;
+      int               lower = 1;
+      for (int f = 0; f < m->nf; f += 7) {
+        int        ns = 0;
+        const int *st = NULL;
+        double     A[3][3], dmin = HUGE_VAL, h = 0;
+        const double cl = FacetsClearance(p, f, &ns, &st);
+        for (int v = 0; v < 3; v++)
+          for (int c = 0; c < 3; c++) A[v][c] = m->V[3 * m->F[3 * f + v] + c];
+        for (int v = 0; v < 3; v++) h = fmax(h, sqrt(pow(A[v][0] - A[(v + 1) % 3][0], 2) + pow(A[v][1] - A[(v + 1) % 3][1], 2) + pow(A[v][2] - A[(v + 1) % 3][2], 2)));
+        for (int g = 0; g < m->nf; g++) {
+          int in = 0;
+          for (int t = 0; t < ns; t++) in = in || st[t] == g;
+          if (in) continue;
+          double B[3][3];
+          for (int v = 0; v < 3; v++)
+            for (int c = 0; c < 3; c++) B[v][c] = m->V[3 * m->F[3 * g + v] + c];
+          dmin = fmin(dmin, sqrt(tritri_sampled(A, B, 12)));
+        }
+        if (cl > dmin) lower = 0;
+        low  = fmin(low, cl / fmin(dmin, h));
+      }
+      TU_CHECK(lower && low > 0.7, "facets: each facet's clearance (sphere of %d triangles, every 7th facet) at most its distance to the facets outside its star (brute force), and at least %.2f of it (or of the longest edge, the search's reach)", m->nf, low);
+      ToolsDestroy(n, &T);
+    }
+    remove(path);
+  }
+}
+
+/* ties of the smoothed projection: points inside the crease of two Nagata patches (a sphere of
+   512 triangles, below the midpoints of 40 edges), on the surface where both feet are equally far
+   (found by bisection across the edge): a shift of the point by 1e-13 either way across it gives the
+   same facet, the smaller index, and the strict minimum would have given both */
+static void test_facets_ties(void)
+{
+  PetscInt       n;
+  PetscErrorCode ierr;
+  char           opts[512], path[256];
+  snprintf(path, sizeof(path), "%s/facets_tie_%d.stl", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid());
+  write_sphere_stl(path, 1.0, 8);
+  snprintf(opts, sizeof(opts), "-tool_names s -tool_s_file %s -tool_s_file_format stl -tool_s_smooth 1", path);
+  Tool *T = facets_tools(opts, &n, &ierr);
+  if (!T) {
+    TU_CHECK(0, "facets ties: %s", errmsg);
+    remove(path);
+    return;
+  }
+  const Patch      *p = &T[0].patch[0];
+  const FacetsData *m = (const FacetsData *)p->data;
+  const double      sh[3] = {0, 0, 0};
+  int               nt = 0, same = 1, smaller = 1, sides = 0;
+  for (int f = 0; f < m->nf && nt < 40; f += 5) {
+    const int g = m->adj[3 * f];
+    if (g < 0) continue;
+    double a[3], b[3], mid[3], t[3], o[3], lo, hi;
+    for (int i = 0; i < 3; i++) {
+      a[i]   = m->V[3 * m->F[3 * f] + i];
+      b[i]   = m->V[3 * m->F[3 * f + 1] + i];
+      mid[i] = 0.5 * (a[i] + b[i]);
+    }
+    const double lm = nrm(mid); /* inside the sphere, below the edge's midpoint, and across the edge */
+    double       e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    t[0] = mid[1] * e[2] - mid[2] * e[1];
+    t[1] = mid[2] * e[0] - mid[0] * e[2];
+    t[2] = mid[0] * e[1] - mid[1] * e[0];
+    const double lt = nrm(t);
+    for (int i = 0; i < 3; i++) {
+      o[i] = mid[i] * (1.0 - 2e-3) / lm * lm;
+      t[i] /= lt;
+    }
+    lo = -0.05 * nrm(e);
+    hi = 0.05 * nrm(e);
+    double y[3], dl, dh;
+    int    sf, sg;
+#define TIE_AT(s_, out_)                                                                 \
+  do {                                                                                   \
+    for (int i = 0; i < 3; i++) y[i] = o[i] + (s_) * t[i];                               \
+    out_ = sqrt(FacetsPatchDistance2(p, f, y, &sf)) - sqrt(FacetsPatchDistance2(p, g, y, &sg)); \
+  } while (0)
+    TIE_AT(lo, dl);
+    TIE_AT(hi, dh);
+    if (!(dl * dh < 0)) continue;
+    for (int it = 0; it < 200 && hi - lo > 1e-15; it++) {
+      double dm;
+      const double s = 0.5 * (lo + hi);
+      TIE_AT(s, dm);
+      if ((dm < 0) == (dl < 0)) lo = s, dl = dm;
+      else hi = s;
+    }
+    TIE_AT(0.5 * (lo + hi), dl);
+#undef TIE_AT
+    if (!sf || !sg) continue; /* both feet inside their patches: the crease from inside */
+    nt++;
+    int fs[2] = {-1, -2}, strict[2] = {-1, -1};
+    for (int k = 0; k < 2; k++) {
+      double     yk[3], u, v;
+      Projection pr;
+      for (int i = 0; i < 3; i++) yk[i] = y[i] + (k ? 1e-13 : -1e-13) * t[i];
+      if (ToolProject(&T[0], sh, yk, PETSC_INFINITY, &pr)) {
+        same = 0;
+        continue;
+      }
+      fs[k] = FacetsOfParameters(p, pr.xi, pr.eta, &u, &v);
+      int s1, s2;
+      strict[k] = FacetsPatchDistance2(p, f, yk, &s1) < FacetsPatchDistance2(p, g, yk, &s2) ? f : g; /* the strict minimum */
+    }
+    sides += strict[0] != strict[1];
+    if (fs[0] != fs[1]) same = 0;
+    if (fs[0] != (f < g ? f : g)) smaller = 0;
+  }
+  TU_CHECK(nt >= 10 && same && smaller && sides > 0, "facets: %d points inside the crease of two smoothed patches, equally far from both: shifted by 1e-13 across it, the same facet (the smaller index) on both sides (the strict minimum changes side at %d of them)", nt, sides);
+  ToolsDestroy(n, &T);
   remove(path);
 }
 
@@ -1705,6 +1899,8 @@ int main(int argc, char **argv)
   /* 10. meshed surfaces */
   test_facets_readers();
   test_facets_errors();
+  test_facets_clearance();
+  test_facets_ties();
   test_facets_sphere();
   test_facets_hint_large();
   PetscCall(PetscOptionsClear(NULL));

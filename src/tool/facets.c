@@ -10,14 +10,15 @@
 
    Projection (closest): the facet of the closest point by the hierarchy (ties: the smallest facet
    index, so that the result is independent of the traversal and of a hint). Smoothed (default):
-   the contact normal is the normalised interpolation m(u, v) of the facet's corner normals (the
-   angle-weighted average of the facet normals around the vertex, split at edges sharper than the
-   feature angle), continuous across smooth edges, and the point is found along that field:
-   y = x(u, v) + g m(u, v), by Newton on (u, v, g) from the closest point, walking to the neighbour
-   across the edge the solution leaves by. Raw (-smooth 0) or where the field gives no point: the
-   closest point with the (interpolated or facet) normal there. A closest point on an open edge of
-   the surface with y beside it (beyond the edge in the facet's plane by more than 1e-9 of the
-   facet's size) is no contact: the patch is skipped. */
+   each facet is Nagata's quadratic patch through its corner normals; every patch within reach of
+   the closest triangle is a candidate, the closest point of each patch is found by Newton (or on
+   its edges), and the closest candidate wins; where two candidates are stationary points (the
+   foot of y inside the patch, or on its edge) whose distances differ by less than FACETS_TIE of
+   the surface's size (a point inside the crease between two patches, on a symmetry plane through
+   the edge, or at a vertex), the smaller facet index wins, so that the round-off of y cannot move
+   the result from one patch to the other. A closest point on an open edge of the surface with y
+   beside it (beyond the edge in the facet's plane by more than 1e-9 of the facet's size) is no
+   contact: the patch is skipped. */
 #include "facets.h"
 
 #include <float.h>
@@ -146,13 +147,10 @@ static double FacetsNormal(const Patch *p, double xi, double eta, double n[3])
 /* Closest point of y on triangle f (Ericson, Real-Time Collision Detection 5.1.5): local (u, v),
    squared distance, region: 0 interior, 1 + e on edge e (0: P0P1, 1: P1P2, 2: P2P0), 4 + i at
    vertex i */
-static double TriClosest(const FacetsData *m, int f, const double y[3], double *uo, double *vo, int *region)
+static inline double TriClosestPts(const double a[3], const double b[3], const double c[3], const double y[3], double *uo, double *vo, int *region)
 {
-  double a[3], b[3], c[3], ab[3], ac[3], ap[3], bp[3], cp[3], x[3], u, v;
+  double ab[3], ac[3], ap[3], bp[3], cp[3], x[3], u, v;
   int    reg;
-  Corner(m, f, 0, a);
-  Corner(m, f, 1, b);
-  Corner(m, f, 2, c);
   for (int i = 0; i < 3; i++) {
     ab[i] = b[i] - a[i];
     ac[i] = c[i] - a[i];
@@ -199,6 +197,15 @@ static double TriClosest(const FacetsData *m, int f, const double y[3], double *
   return Dist2(x, y);
 }
 
+static double TriClosest(const FacetsData *m, int f, const double y[3], double *uo, double *vo, int *region)
+{
+  double a[3], b[3], c[3];
+  Corner(m, f, 0, a);
+  Corner(m, f, 1, b);
+  Corner(m, f, 2, c);
+  return TriClosestPts(a, b, c, y, uo, vo, region);
+}
+
 /* ------------------------------------------------------------------ hierarchy */
 
 typedef struct {
@@ -207,6 +214,22 @@ typedef struct {
 } Best;
 
 static inline int Better(double d2, int f, const Best *b) { return d2 < b->d2 || (d2 == b->d2 && f < b->f); }
+
+/* Ties of the smoothed projection: two stationary points (each the foot of y on its patch) whose
+   distances differ by less than FACETS_TIE of the surface's size are equally close (a point inside
+   the crease between two patches, e.g. on a symmetry plane through their edge, or at a vertex,
+   whose distances from either side differ by round-off only): the smaller facet index wins, so
+   that the round-off of y (another partition, another summation order) cannot move the result
+   from one patch to the other, nor the contact frame's chord of the first contact with it */
+#define FACETS_TIE 1e-10
+
+/* the candidates' radius of a smoothed surface: every patch that can be within the tie band of the
+   closest one, from the distance d2 (squared) of a plane triangle */
+static inline double CandidateRadius2(const FacetsData *m, double d2)
+{
+  const double r = sqrt(d2) + 2.0 * m->dev + FACETS_TIE * m->L;
+  return r * r * (1.0 + 1e-12);
+}
 
 static inline double BoxDist2(const FacetsNode *n, const double y[3])
 {
@@ -230,7 +253,7 @@ static void TreeClosestCollect(const FacetsData *m, const double y[3], Best *b, 
   if (!m->nnode) return;
   if (list) {
     *nl = 0;
-    R2  = b->d2 < HUGE_VAL ? (sqrt(b->d2) + 2.0 * m->dev) * (sqrt(b->d2) + 2.0 * m->dev) * (1.0 + 1e-12) : HUGE_VAL;
+    R2  = b->d2 < HUGE_VAL ? CandidateRadius2(m, b->d2) : HUGE_VAL;
   }
   stack[ns++] = 0;
   while (ns) {
@@ -244,7 +267,7 @@ static void TreeClosestCollect(const FacetsData *m, const double y[3], Best *b, 
         if (Better(d2, k, b)) {
           b->d2 = d2;
           b->f  = k;
-          if (list) R2 = (sqrt(d2) + 2.0 * m->dev) * (sqrt(d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+          if (list) R2 = CandidateRadius2(m, d2);
           else R2 = d2;
         }
         if (list && d2 <= R2 && *nl < 256) {
@@ -448,7 +471,7 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
   if (!m->gcap || !(b->d2 < HUGE_VAL)) return 1;
   if (list) {
     *nl = 0;
-    R2  = (sqrt(b->d2) + 2.0 * m->dev) * (sqrt(b->d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+    R2  = CandidateRadius2(m, b->d2);
   }
   {
     const double r = sqrt(R2) * (1.0 + 1e-9) + 1e-12 * m->L; /* outwards of the rounding of y -+ r */
@@ -496,7 +519,7 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
           if (Better(d2, k, b)) {
             b->d2 = d2;
             b->f  = k;
-            if (list) R2 = (sqrt(d2) + 2.0 * m->dev) * (sqrt(d2) + 2.0 * m->dev) * (1.0 + 1e-12);
+            if (list) R2 = CandidateRadius2(m, d2);
             else R2 = d2;
           }
           if (list && d2 <= R2) {
@@ -511,6 +534,253 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
           }
         }
       }
+  return 0;
+}
+
+/* ------------------------------------------------------------------ local certificate */
+
+/* Each triangle's clearance c_f: a lower bound of its distance to every triangle that shares no
+   vertex with it. A point y at distance d_w of triangle f (the warm start's walk) has every facet
+   within r of it within d_w + r of f; if d_w + r < c_f, those facets share a vertex with f, and
+   the facets around f's three vertices alone give the closest facet (and the smoothed candidates
+   within r), exactly as the hierarchy does, without the grid or the hierarchy: a node near the
+   surface touches its own few facets, whatever the tool's size. */
+
+/* a hint to the processor that *a will be read soon (no effect on the results) */
+static inline void Prefetch(const void *a)
+{
+#if defined(__GNUC__)
+  __builtin_prefetch(a);
+#else
+  (void)a;
+#endif
+}
+
+/* squared distance between the segments p1 q1 and p2 q2 (Ericson 5.1.9; non-degenerate segments) */
+static double SegSeg2(const double p1[3], const double q1[3], const double p2[3], const double q2[3])
+{
+  double d1[3], d2[3], r[3], c1[3], c2[3], s, t;
+  for (int i = 0; i < 3; i++) {
+    d1[i] = q1[i] - p1[i];
+    d2[i] = q2[i] - p2[i];
+    r[i]  = p1[i] - p2[i];
+  }
+  const double a = Dot(d1, d1), e = Dot(d2, d2), f = Dot(d2, r), c = Dot(d1, r), b = Dot(d1, d2), den = a * e - b * b;
+  s = den > 0.0 ? Clamp01((b * f - c * e) / den) : 0.0;
+  t = (b * s + f) / e;
+  if (t < 0.0) {
+    t = 0.0;
+    s = Clamp01(-c / a);
+  } else if (t > 1.0) {
+    t = 1.0;
+    s = Clamp01((b - c) / a);
+  }
+  for (int i = 0; i < 3; i++) {
+    c1[i] = p1[i] + d1[i] * s;
+    c2[i] = p2[i] + d2[i] * t;
+  }
+  return Dist2(c1, c2);
+}
+
+/* 1 if the segment p q crosses the plane of triangle T inside it (or on its boundary) */
+static int SegPierces(const double p[3], const double q[3], const double T[3][3])
+{
+  double e1[3], e2[3], n[3], x[3], w[3][3];
+  for (int i = 0; i < 3; i++) {
+    e1[i] = T[1][i] - T[0][i];
+    e2[i] = T[2][i] - T[0][i];
+  }
+  Cross(e1, e2, n);
+  const double dp = (p[0] - T[0][0]) * n[0] + (p[1] - T[0][1]) * n[1] + (p[2] - T[0][2]) * n[2];
+  const double dq = (q[0] - T[0][0]) * n[0] + (q[1] - T[0][1]) * n[1] + (q[2] - T[0][2]) * n[2];
+  if ((dp > 0.0 && dq > 0.0) || (dp < 0.0 && dq < 0.0) || dp == dq) return 0; /* one side, or in the plane (the distances of the vertices and edges decide) */
+  const double t = dp / (dp - dq);
+  for (int i = 0; i < 3; i++) x[i] = p[i] + t * (q[i] - p[i]);
+  for (int k = 0; k < 3; k++) { /* inside: x on the inner side of every edge (with a margin) */
+    double ek[3], xk[3];
+    for (int i = 0; i < 3; i++) {
+      ek[i] = T[(k + 1) % 3][i] - T[k][i];
+      xk[i] = x[i] - T[k][i];
+    }
+    Cross(ek, xk, w[k]);
+    if (Dot(w[k], n) < -1e-9 * Dot(n, n)) return 0;
+  }
+  return 1;
+}
+
+/* squared distance between two triangles: 0 if one crosses the other, else the least of the
+   vertex-triangle and edge-edge distances */
+static double TriTri2(const double A[3][3], const double B[3][3])
+{
+  double best = HUGE_VAL, u, v;
+  int    reg;
+  for (int k = 0; k < 3; k++)
+    if (SegPierces(A[k], A[(k + 1) % 3], B) || SegPierces(B[k], B[(k + 1) % 3], A)) return 0.0;
+  for (int k = 0; k < 3; k++) {
+    best = fmin(best, TriClosestPts(B[0], B[1], B[2], A[k], &u, &v, &reg));
+    best = fmin(best, TriClosestPts(A[0], A[1], A[2], B[k], &u, &v, &reg));
+    for (int j = 0; j < 3; j++) best = fmin(best, SegSeg2(A[k], A[(k + 1) % 3], B[j], B[(j + 1) % 3]));
+  }
+  return best;
+}
+
+static inline double BoxBox2(const FacetsNode *n, const double lo[3], const double hi[3])
+{
+  double s = 0.0;
+  for (int i = 0; i < 3; i++) {
+    const double o = fmax((double)n->lo[i] - hi[i], lo[i] - (double)n->hi[i]);
+    if (o > 0.0) s += o * o;
+  }
+  return s;
+}
+
+PetscErrorCode FacetsLocalBuild(FacetsData *m)
+{
+  int *vfs, *vf, *nb, stack[128], nbmax = 0, total = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1((size_t)m->nv + 1, &vfs)); /* the facets around each vertex, increasing */
+  PetscCall(PetscMalloc1(3 * (size_t)m->nf, &vf));
+  for (int k = 0; k < 3 * m->nf; k++) vfs[m->F[k] + 1]++;
+  for (int k = 0; k < m->nv; k++) vfs[k + 1] += vfs[k];
+  {
+    int *fill;
+    PetscCall(PetscCalloc1((size_t)m->nv, &fill));
+    for (int f = 0; f < m->nf; f++)
+      for (int c = 0; c < 3; c++) {
+        const int k              = m->F[3 * f + c];
+        vf[vfs[k] + fill[k]++] = f;
+      }
+    PetscCall(PetscFree(fill));
+  }
+  for (int k = 0; k < m->nv; k++) nbmax = PetscMax(nbmax, vfs[k + 1] - vfs[k]);
+  PetscCall(PetscMalloc1(3 * (size_t)nbmax, &nb));
+  PetscCall(PetscMalloc1((size_t)m->nf + 1, &m->star));
+  for (int pass = 0; pass < 2; pass++) { /* the stars' sizes, then the stars */
+    if (pass == 1) PetscCall(PetscMalloc1((size_t)total, &m->st));
+    total = 0;
+    for (int f = 0; f < m->nf; f++) {
+      int nn = 0;
+      for (int c = 0; c < 3; c++)
+        for (int j = vfs[m->F[3 * f + c]]; j < vfs[m->F[3 * f + c] + 1]; j++) { /* merged, increasing */
+          const int g = vf[j];
+          int       t = nn;
+          while (t > 0 && nb[t - 1] > g) t--;
+          if (t > 0 && nb[t - 1] == g) continue;
+          for (int q = nn; q > t; q--) nb[q] = nb[q - 1];
+          nb[t] = g;
+          nn++;
+        }
+      if (pass == 1) {
+        m->star[f].start = total;
+        for (int t = 0; t < nn; t++) m->st[total + t] = nb[t];
+      }
+      total += nn;
+    }
+  }
+  m->star[m->nf].start = total;
+  m->star[m->nf].clear = 0.0f;
+  m->nst               = total;
+  PetscCall(PetscFree(nb));
+  PetscCall(PetscFree(vfs));
+  PetscCall(PetscFree(vf));
+  for (int f = 0; f < m->nf; f++) {
+    double    A[3][3], lo[3], hi[3], h2 = 0.0, cl, cl2;
+    int       ns = 0;
+    const int s0 = m->star[f].start, s1 = m->star[f + 1].start;
+    for (int c = 0; c < 3; c++) Corner(m, f, c, A[c]);
+    for (int i = 0; i < 3; i++) {
+      lo[i] = fmin(A[0][i], fmin(A[1][i], A[2][i]));
+      hi[i] = fmax(A[0][i], fmax(A[1][i], A[2][i]));
+    }
+    for (int c = 0; c < 3; c++) h2 = fmax(h2, Dist2(A[c], A[(c + 1) % 3]));
+    cl          = sqrt(h2); /* searched up to the longest edge: beyond it, the bound itself */
+    cl2         = h2;
+    stack[ns++] = 0;
+    while (ns) {
+      const FacetsNode *n = &m->node[stack[--ns]];
+      if (BoxBox2(n, lo, hi) >= cl2) continue;
+      if (n->count > 0) {
+        for (int g = n->first; g < n->first + n->count; g++) {
+          double B[3][3], bl[3], bh[3], o2 = 0.0;
+          int    in = 0;
+          for (int t = s0; t < s1 && !in; t++) in = m->st[t] == g;
+          if (in) continue;
+          for (int c = 0; c < 3; c++) Corner(m, g, c, B[c]);
+          for (int i = 0; i < 3; i++) { /* the boxes first */
+            bl[i]          = fmin(B[0][i], fmin(B[1][i], B[2][i]));
+            bh[i]          = fmax(B[0][i], fmax(B[1][i], B[2][i]));
+            const double o = fmax(bl[i] - hi[i], lo[i] - bh[i]);
+            if (o > 0.0) o2 += o * o;
+          }
+          if (o2 >= cl2) continue;
+          const double d2 = TriTri2(A, B);
+          if (d2 < cl2) {
+            cl2 = d2;
+            cl  = sqrt(d2);
+          }
+        }
+      } else if (ns < 127) {
+        stack[ns++] = n->first;
+        stack[ns++] = n->first + 1;
+      } else cl = cl2 = 0.0; /* too deep: no certificate for this facet */
+    }
+    cl *= 1.0 - 1e-9; /* the round-off of the distances */
+    m->star[f].clear = (float)cl;
+    if ((double)m->star[f].clear > cl) m->star[f].clear = nextafterf(m->star[f].clear, 0.0f);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The closest facet as TreeClosestCollect, from the facets around the vertices of b's facet, when
+   b's clearance proves that they hold every facet within the search radius (b: the walk's facet
+   and its distance). Returns 1 (b, list to be redone) when it does not, or the list would overflow */
+static int LocalClosestCollect(const FacetsData *m, const double y[3], Best *b, Best *list, int *nl, Seen *seen, int *ns)
+{
+  const int    f0 = b->f;
+  const double R2 = list ? CandidateRadius2(m, b->d2) : b->d2;
+  if (!m->star || f0 == INT_MAX) return 1;
+  if (sqrt(b->d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) >= (double)m->star[f0].clear) return 1;
+  if (list) *nl = 0;
+  {
+    const int j0 = m->star[f0].start, j1 = m->star[f0 + 1].start;
+    for (int j = j0; j < j1; j++) Prefetch(&m->F[3 * m->st[j]]); /* the star's facets, then their vertices: their cache misses overlap */
+    for (int j = j0; j < j1; j++)
+      for (int c = 0; c < 3; c++) Prefetch(&m->V[3 * m->F[3 * m->st[j] + c]]);
+    for (int j = j0; j < j1; j++) {
+      const int k = m->st[j];
+      int       q = 0;
+      double    d2;
+      while (q < *ns && seen[q].f != k) q++;
+      if (q < *ns) {
+        if (!list || seen[q].listed) continue;
+        d2 = seen[q].d2;
+      } else {
+        double u, v;
+        int    reg;
+        d2 = TriClosest(m, k, y, &u, &v, &reg);
+        if (*ns < SEEN_MAX) {
+          seen[*ns].f      = k;
+          seen[*ns].listed = 0;
+          seen[(*ns)++].d2 = d2;
+        } else q = -1; /* not recorded */
+      }
+      if (Better(d2, k, b)) {
+        b->d2 = d2;
+        b->f  = k;
+      }
+      if (list && d2 <= R2) {
+        if (q < 0) { /* not recorded: listed already? */
+          int dup = 0;
+          for (int t = 0; t < *nl && !dup; t++) dup = list[t].f == k;
+          if (dup) continue;
+        } else seen[q].listed = 1;
+        if (*nl == 256) return 1;
+        list[*nl].d2    = d2;
+        list[(*nl)++].f = k;
+      }
+    }
+  }
   return 0;
 }
 
@@ -622,21 +892,45 @@ static double PatchClosestLocal(const FacetsData *m, int f, const double y[3], d
   return best;
 }
 
+/* an edge-held closest point of facet f's patch that is stationary all the same: y - x normal to
+   the patch there (tangential offset below 1e-9 of the facet's size; the foot of y on the edge) */
+static int Stationary(const FacetsData *m, int f, const double y[3], double u, double v)
+{
+  double x[3], xu[3], xv[3], n[3], r[3], P0[3], P1[3], P2[3];
+  FacetEvalLocal(m, f, u, v, x, xu, xv, NULL, NULL, NULL);
+  Cross(xu, xv, n);
+  const double ln = Norm(n);
+  if (!(ln > 0.0)) return 0;
+  for (int i = 0; i < 3; i++) {
+    n[i] /= ln;
+    r[i] = y[i] - x[i];
+  }
+  const double rn = Dot(r, n), t2 = Dot(r, r) - rn * rn;
+  Corner(m, f, 0, P0);
+  Corner(m, f, 1, P1);
+  Corner(m, f, 2, P2);
+  const double hf2 = fmax(Dist2(P0, P1), fmax(Dist2(P1, P2), Dist2(P2, P0)));
+  return t2 <= 1e-18 * hf2;
+}
+
 /* The closest point from the hierarchy's answer b (the closest plane triangle). Raw facets: that
-   triangle. Smoothed: every facet whose triangle lies within sqrt(b) + 2 dev of y (dev: the largest
-   distance of a patch from its triangle) is a candidate; on each, the closest point of its patch;
-   the smallest distance wins (ties: the smallest facet index). A point beside an open edge (its
-   tangential offset above 1e-9 of the facet's size) is no contact (1). */
+   triangle. Smoothed: every facet whose triangle lies within sqrt(b) + 2 dev + tie of y (dev: the
+   largest distance of a patch from its triangle) is a candidate; on each, the closest point of its
+   patch; the smallest distance wins (equal distances: the smaller facet index), except that among
+   two or more stationary points within the tie band of the smallest distance the smallest facet
+   index wins (FACETS_TIE). A point beside an open edge (its tangential offset above 1e-9 of the
+   facet's size) is no contact (1). */
 static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], double L, const Best *b, Best *list, const int *nl, PatchCandidate *c)
 {
   double u, v, x[3], xu[3], xv[3], P0[3], P1[3], P2[3];
   int    reg, f = b->f;
   TriClosest(m, f, y, &u, &v, &reg);
   if (m->smooth) {
-    Best         bb = {HUGE_VAL, INT_MAX}, tmp;
-    int          edge = -1, nc = 0;
-    const double r  = sqrt(b->d2) + 2.0 * m->dev, r2 = r * r * (1.0 + 1e-12);
-    for (int k = 0; k < *nl; k++) /* the candidates within sqrt(b) + 2 dev, by distance, then index */
+    Best         tmp;
+    double       cd[256], cu[256], cv[256], dmin = HUGE_VAL;
+    int          ce[256], cs[256], edge = -1, nc = 0, ne = 0, win = -1, anys = 0;
+    const double r2 = CandidateRadius2(m, b->d2), tie = FACETS_TIE * m->L;
+    for (int k = 0; k < *nl; k++) /* the candidates within sqrt(b) + 2 dev + tie, by distance, then index */
       if (list[k].d2 <= r2) {
         int j = nc++;
         tmp   = list[k];
@@ -646,18 +940,26 @@ static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], 
         }
         list[j] = tmp;
       }
-    for (int k = 0; k < nc; k++) {
-      double uk = 0.0, vk = 0.0;
-      int    ek = -1;
-      if (sqrt(list[k].d2) - m->dev > sqrt(bb.d2) * (1.0 + 1e-12)) break; /* no patch farther on can be closer */
-      const double d2 = PatchClosestLocal(m, list[k].f, y, &uk, &vk, &ek);
-      if (Better(d2, list[k].f, &bb)) {
-        bb.d2 = d2;
-        bb.f  = list[k].f;
-        u     = uk;
-        v     = vk;
-        edge  = ek;
-      }
+    for (int k = 0; k < nc; k++, ne++) {
+      if (sqrt(list[k].d2) - m->dev > (dmin + tie) * (1.0 + 1e-12)) break; /* no patch farther on can be within the tie band */
+      ce[k] = -1;
+      cd[k] = sqrt(PatchClosestLocal(m, list[k].f, y, &cu[k], &cv[k], &ce[k]));
+      cs[k] = ce[k] < 0 || Stationary(m, list[k].f, y, cu[k], cv[k]);
+      if (cd[k] < dmin) dmin = cd[k];
+    }
+    for (int k = 0; k < ne; k++) {
+      if (cd[k] <= dmin + tie && cs[k]) anys++;
+      if (win < 0 || cd[k] < cd[win] || (cd[k] == cd[win] && list[k].f < list[win].f)) win = k;
+    }
+    if (anys > 1) /* two stationary points within the tie band: the smallest facet index */
+      for (int k = 0; k < ne; k++)
+        if (cd[k] <= dmin + tie && cs[k] && (!(cd[win] <= dmin + tie && cs[win]) || list[k].f < list[win].f)) win = k;
+    Best bb = {HUGE_VAL, INT_MAX};
+    if (win >= 0) {
+      bb.f = list[win].f;
+      u    = cu[win];
+      v    = cv[win];
+      edge = ce[win];
     }
     if (bb.f != INT_MAX) f = bb.f;
     reg = edge < 0 ? 0 : 1 + edge;
@@ -711,14 +1013,22 @@ static int FacetsClosest(const Patch *p, const double y[3], double maxdist, doub
 }
 
 /* The same result as FacetsClosest: the hint's facet and a greedy walk over its neighbours give a
-   bound, the grid's cells within that bound prove (or improve) it; where the bound spans more
+   facet and a bound; the facet's star proves (or improves) it when the facet's clearance allows
+   (LocalClosestCollect), else the grid's cells within that bound; where the bound spans more
    cells, the hierarchy from its root with that bound (a walk that ends beyond maxdist: maxdist) */
 static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, double L, double hxi, double heta, PatchCandidate *c)
 {
   const FacetsData *m = (const FacetsData *)p->data;
   double            u, v;
   int               reg, f = FacetsDecode(m, hxi, heta, &u, &v), nl = 0, ns = 1;
-  Best              b = {TriClosest(m, f, y, &u, &v, &reg), f}, list[256];
+  Best              b;
+  Best              list[256];
+  if (m->star) {
+    Prefetch(&m->star[f]);
+    Prefetch(&m->adj[3 * f]);
+  }
+  b.d2 = TriClosest(m, f, y, &u, &v, &reg);
+  b.f  = f;
   Seen              seen[SEEN_MAX] = {{f, 0, b.d2}};
   for (int step = 0; step < 64; step++) {
     int moved = 0;
@@ -746,6 +1056,8 @@ static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, 
     b.d2 = maxdist * maxdist;
     b.f  = INT_MAX;
   }
+  if (!LocalClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl, seen, &ns)) return FacetsFinish(p, m, y, L, &b, list, &nl, c);
+  for (int q = 0; q < ns; q++) seen[q].listed = 0; /* the grid lists again */
   if (GridClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl, seen, &ns)) TreeClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl);
   if (b.f == INT_MAX) return 1;
   return FacetsFinish(p, m, y, L, &b, list, &nl, c);
@@ -847,6 +1159,8 @@ static PetscErrorCode FacetsDestroy(Patch *p)
   PetscCall(PetscFree(m->node));
   PetscCall(PetscFree(m->gcell));
   PetscCall(PetscFree(m->glist));
+  PetscCall(PetscFree(m->star));
+  PetscCall(PetscFree(m->st));
   PetscCall(PetscFree(m));
   p->data = NULL;
   PetscFunctionReturn(0);
@@ -854,7 +1168,7 @@ static PetscErrorCode FacetsDestroy(Patch *p)
 
 size_t FacetsBytes(const FacetsData *m)
 {
-  return sizeof(*m) + (size_t)m->nv * (3 * sizeof(double) + 1) + (size_t)m->nf * (9 * sizeof(int) + 1) + (size_t)m->nn * 3 * sizeof(double) + (size_t)m->nnode * sizeof(FacetsNode) + (size_t)m->gcap * sizeof(FacetsCell) + (size_t)m->nglist * sizeof(int);
+  return sizeof(*m) + (size_t)m->nv * (3 * sizeof(double) + 1) + (size_t)m->nf * (9 * sizeof(int) + 1) + (size_t)m->nn * 3 * sizeof(double) + (size_t)m->nnode * sizeof(FacetsNode) + (size_t)m->gcap * sizeof(FacetsCell) + (size_t)m->nglist * sizeof(int) + (m->star ? ((size_t)m->nf + 1) * sizeof(FacetsStar) + (size_t)m->nst * sizeof(int) : 0);
 }
 
 int FacetsBruteClosest(const Patch *p, const double y[3], double *d2)
@@ -886,6 +1200,36 @@ int FacetsTreeClosest(const Patch *p, const double y[3], double *d2)
 void FacetsEvalLocal(const FacetsData *m, int f, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv) { FacetEvalLocal(m, f, u, v, x, xu, xv, xuu, xuv, xvv); }
 
 void FacetsEncodeForTest(int f, double u, double v, double *xi, double *eta) { FacetsEncode(f, u, v, xi, eta); }
+
+double FacetsTriTriDistance2(const double A[3][3], const double B[3][3]) { return TriTri2(A, B); }
+
+double FacetsPatchDistance2(const Patch *p, int f, const double y[3], int *stationary)
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  double            u, v;
+  int               e = -1;
+  const double      d2 = PatchClosestLocal(m, f, y, &u, &v, &e);
+  *stationary           = e < 0 || Stationary(m, f, y, u, v);
+  return d2;
+}
+
+double FacetsClearance(const Patch *p, int f, int *nstar, const int **star)
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  if (!m->star) return 0.0;
+  *nstar = m->star[f + 1].start - m->star[f].start;
+  *star  = &m->st[m->star[f].start];
+  return (double)m->star[f].clear;
+}
+
+int FacetsStarCertifies(const Patch *p, int f, const double y[3])
+{
+  const FacetsData *m = (const FacetsData *)p->data;
+  double            u, v;
+  int               reg;
+  const double      d2 = TriClosest(m, f, y, &u, &v, &reg), R2 = m->smooth ? CandidateRadius2(m, d2) : d2;
+  return m->star && sqrt(d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) < (double)m->star[f].clear;
+}
 
 int FacetsOfParameters(const Patch *p, double xi, double eta, double *u, double *v) { return FacetsDecode((const FacetsData *)p->data, xi, eta, u, v); }
 

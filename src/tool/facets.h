@@ -16,9 +16,16 @@ typedef struct {
   int       start, count;
 } FacetsCell;
 
+/* a triangle's star and clearance: the start of its star's list, and a lower bound of the distance
+   from the triangle to every triangle outside its star (rounded down; the local certificate) */
+typedef struct {
+  int   start;
+  float clear;
+} FacetsStar;
+
 typedef struct {
   char           file[PETSC_MAX_PATH_LEN];
-  int            nv, nf, nn, nnode, nopen;
+  int            nv, nf, nn, nnode, nopen, nst;
   double        *V;     /* 3 nv: vertex coordinates (reference position)                          */
   int           *F;     /* 3 nf: vertex ids of each triangle, counterclockwise seen from the normal */
   int           *adj;   /* 3 nf: the neighbour across edge e (P_e P_e+1); -1 open, -2 non-manifold */
@@ -33,6 +40,10 @@ typedef struct {
   int            gcap, nglist; /* its hash table's slots (a power of 2) and entries                  */
   FacetsCell    *gcell; /* gcap slots (count 0: empty)                                              */
   int           *glist; /* nglist: the facets whose bounding box meets each cell                     */
+  FacetsStar    *star;  /* nf + 1: each triangle's star (the facets sharing a vertex with it, itself
+                           included: st[star[f].start .. star[f+1].start - 1], increasing) and its
+                           clearance                                                              */
+  int           *st;
   double         dev;   /* the largest distance of a smoothed facet from its plane triangle          */
   int            smooth;
   double         feature_deg;
@@ -59,11 +70,20 @@ void           FacetsFormat(const char path[], const char format[], char out[16]
 size_t         FacetsBytes(const FacetsData *m);
 /* the bucket grid of the facets (after the facets and vertices are final) */
 PetscErrorCode FacetsGridBuild(FacetsData *m);
+/* each triangle's star and clearance (after the hierarchy is final) */
+PetscErrorCode FacetsLocalBuild(FacetsData *m);
 /* the patch of facet f at its local (u, v): point, first and second derivatives */
 void FacetsEvalLocal(const FacetsData *m, int f, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv);
 /* for the tests: the closest facet by brute force and by the hierarchy (squared distance) */
 int FacetsBruteClosest(const Patch *p, const double y[3], double *d2);
 int FacetsTreeClosest(const Patch *p, const double y[3], double *d2);
 void FacetsEncodeForTest(int f, double u, double v, double *xi, double *eta);
+/* for the tests: the distance of two triangles (squared), a facet's clearance and star, and
+   whether the star of facet f alone decides the projection of y (the local certificate) */
+double FacetsTriTriDistance2(const double A[3][3], const double B[3][3]);
+/* for the tests: the squared distance of y from facet f's (smoothed) patch, and whether it is a stationary point */
+double FacetsPatchDistance2(const Patch *p, int f, const double y[3], int *stationary);
+double FacetsClearance(const Patch *p, int f, int *nstar, const int **star);
+int    FacetsStarCertifies(const Patch *p, int f, const double y[3]);
 int FacetsOfParameters(const Patch *p, double xi, double eta, double *u, double *v);
 #endif

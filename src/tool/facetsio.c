@@ -1126,6 +1126,7 @@ PetscErrorCode FacetsBuild(MPI_Comm comm, Patch *p, const char path[], FacetsRaw
     m->L = sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   }
   PetscCall(FacetsGridBuild(m));
+  PetscCall(FacetsLocalBuild(m));
   PetscFunctionReturn(0);
 }
 
