@@ -467,6 +467,8 @@ PetscErrorCode ContactGetAreaSets(Contact c, PetscInt *n, char (**sets)[ATRITO_N
 {
   PetscBool anyauto = c->kauto;
   PetscFunctionBeginUser;
+  *n    = 0;
+  *sets = c->set;
   for (PetscInt t = 0; t < c->ntools; t++) anyauto = anyauto || c->tc[t].kauto;
   if (!c->uset) { /* the union of the tools' sets (the global ones first) */
     PetscInt nmax = c->nset;
