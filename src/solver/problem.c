@@ -440,7 +440,7 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
     }
   }
   PetscCall(SetNearNullSpace(pb, pb->J));
-  PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  if (!(pb->ntu && pb->assembly_coo)) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE)); /* (not before the preallocation of an extended matrix) */
   if (pb->assembly_coo) {
     /* coordinate assembly: the element blocks' (i, j) once, then the contact blocks; each
        Jacobian then only fills values */
@@ -465,6 +465,7 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
     }
     PetscCall(ContactGetCOO(contact, &nct, ci + ncoo, cj + ncoo));
     PetscCall(MatSetPreallocationCOO(pb->J, ncoo + nct, ci, cj));
+    if (pb->ntu) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
     PetscCall(PetscFree2(ci, cj));
     PetscCall(PetscCalloc1(ncoo + nct, &pb->coo_v));
   }
