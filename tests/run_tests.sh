@@ -52,6 +52,7 @@ run benchmark       bash tests/test_benchmark.sh
 run facets          bash tests/test_facets.sh
 run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh
+run forcetool       bash tests/test_forcetool.sh
 run eas-solver      bash tests/test_eas.sh
 run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh
