@@ -40,6 +40,8 @@ run tool            bin/test_tool
 run contact-kernels bin/test_contact
 run contact-object-np1 mpiexec -n 1 bin/test_contact_object
 run contact-object-np2 mpiexec -n 2 bin/test_contact_object
+run toolforce-np1   mpiexec -n 1 bin/test_toolforce
+run toolforce-np2   mpiexec -n 2 bin/test_toolforce
 run output-np1      mpiexec -n 1 bin/test_output -output_dir "$TEST_OUT/output1"
 run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
 run lu-np1          mpiexec -n 1 bin/test_lu
