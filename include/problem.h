@@ -43,7 +43,7 @@ typedef struct {
   /* solution: with force-driven tools (ntu > 0) the global vectors hold the body's unknowns (the
      DM's global layout) followed, on the last rank, by the ntu tool unknowns (contact.h); Ubv and
      Fbv are DM global vectors that view the body part of such a vector (VecPlaceArray) */
-  PetscInt  ntu;
+  PetscInt  ntu, tbs;        /* tool unknowns; block size of the extended vectors */
   Vec       Ubv, Fbv;
   Vec       U, Uc, Uprev;  /* current iterate, committed, previous committed (global)    */
   Vec       Uloc, Floc;    /* local work vectors                                        */

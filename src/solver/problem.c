@@ -401,6 +401,16 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
     PetscCall(VecGetLocalSize(pb->Ubv, &nbl));
     PetscCall(VecGetSize(pb->Ubv, &N));
     PetscCall(VecCreateMPI(pb->comm, nbl + (pb->rank == pb->size - 1 ? pb->ntu : 0), PETSC_DETERMINE, &pb->U));
+    {
+      /* the body's block size (3 when no component is constrained apart from whole vertices) stays:
+         the tools add 3 unknowns each */
+      PetscInt bs, ok;
+      PetscCall(VecGetBlockSize(pb->Ubv, &bs));
+      ok = (bs > 1 && nbl % bs == 0 && 3 % bs == 0) ? 1 : 0;
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPIU_INT, MPI_MIN, pb->comm));
+      pb->tbs = ok ? bs : 1;
+      if (ok) PetscCall(VecSetBlockSize(pb->U, bs));
+    }
     PetscCall(ContactSetToolDofs(contact, N, pb->rank == pb->size - 1 ? PETSC_TRUE : PETSC_FALSE));
   }
   PetscCall(VecDuplicate(pb->U, &pb->Uc));
@@ -416,6 +426,7 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
     PetscCall(VecGetLocalSize(pb->U, &nl));
     PetscCall(MatCreate(pb->comm, &pb->J));
     PetscCall(MatSetSizes(pb->J, nl, nl, PETSC_DETERMINE, PETSC_DETERMINE));
+    PetscCall(MatSetBlockSize(pb->J, pb->tbs));
     PetscCall(MatSetType(pb->J, MATAIJ));
     if (!pb->assembly_coo) {
       const PetscInt     nd = 3 * pb->ek->nen;
