@@ -2,7 +2,7 @@
    rigid plane whose z displacement is an unknown (-tool_plane_force_z), with friction (slip):
    the coupling blocks of the Jacobian (node rows x tool columns, tool row x node and tool columns)
    against central differences of the residual; the tool's residual row against its closed form;
-   the regularisation of a tool out of contact; the drive switches of ContactSetToolDrive and the
+   the regularisation of a tool out of contact (its row's stiffness and residual); the drive switches of ContactSetToolDrive and the
    kinks of ContactNextKink. Runs on 1 and 2 ranks. */
 #include <petscmat.h>
 #include "testutil.h"
@@ -221,7 +221,15 @@ int main(int argc, char **argv)
     PetscCall(Jacobian(&s, u, d0, lam));
     if (rank == size - 1) J22 = Entry(s.J, s.nbody + 2, s.nbody + 2);
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &J22, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
-    CHECK_ALL(J22 == 9 * KN && r[2] == 4, "out of contact: the tool's diagonal is the sum of the penalties %g (got %g), its residual minus the target 4 (got %g)", 9 * KN, (double)J22, (double)r[2]);
+    CHECK_ALL(J22 == 9 * KN && r[2] == 4, "out of contact, beyond the search distance: the tool's diagonal is the sum of the penalties %g (got %g), its residual minus the target 4 (got %g)", 9 * KN, (double)J22, (double)r[2]);
+    /* within the search distance: the penalty law continued across the nearest node's gap
+       0.1 - 0.01 (1 + 0.3 + 0.1) with the regularising stiffness */
+    d0[2] = -0.1;
+    PetscCall(Residual(&s, u, d0, lam, f, r));
+    {
+      const PetscReal expect = -9 * KN * (0.1 - 0.014) + 4;
+      CHECK_ALL(PetscAbsReal(r[2] - expect) < 1e-12 * PetscAbsReal(expect), "out of contact, within the search distance: the tool's row is -k_reg g_min minus the target, %g (got %g)", (double)expect, (double)r[2]);
+    }
   }
 
   /* 4. drive switches: to displacement the tool holds its committed position; back to force the

@@ -1094,25 +1094,58 @@ PetscErrorCode ContactGetCOO(Contact contact, PetscCount *n, PetscInt *ci, Petsc
 
 PetscErrorCode ContactToolResidual(Contact contact, PetscReal lambda, PetscReal *r)
 {
-  PetscReal *fs;
+  const PetscInt nb = contact->nb;
+  PetscReal     *fs, *loc, *all;
+  PetscMPIInt    size;
 
   PetscFunctionBeginUser;
-  if (!contact->nb) PetscFunctionReturn(0);
-  PetscCall(PetscCalloc1(3 * contact->nb, &fs));
+  if (!nb) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_size(contact->comm, &size));
+  /* per tool: the force on the body; the nodes in contact, the smallest gap of its paired nodes
+     and the normal there (this rank's, then every rank's) */
+  PetscCall(PetscCalloc3(3 * nb, &fs, 5 * nb, &loc, 5 * nb * size, &all));
+  for (PetscInt b = 0; b < nb; b++) loc[5 * b + 1] = PETSC_MAX_REAL;
   for (PetscInt i = 0; i < contact->ns; i++) {
     const ContactState *st = &contact->cst_t[i];
+    const PairMemo     *pm = &contact->pmemo[i];
+    if (pm->tool >= 0 && contact->tc[pm->tool].block >= 0 && pm->pr.gap < loc[5 * contact->tc[pm->tool].block + 1]) {
+      PetscReal *l = loc + 5 * contact->tc[pm->tool].block;
+      l[1]         = pm->pr.gap;
+      for (int k = 0; k < 3; k++) l[2 + k] = pm->pr.n[k];
+    }
     if (st->tool < 0 || st->status == CONTACT_OPEN || contact->tc[st->tool].block < 0) continue;
     for (int k = 0; k < 3; k++) fs[3 * contact->tc[st->tool].block + k] += st->f[k];
+    loc[5 * contact->tc[st->tool].block] += 1;
   }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fs, (PetscMPIInt)(3 * contact->nb), MPIU_REAL, MPI_SUM, contact->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fs, (PetscMPIInt)(3 * nb), MPIU_REAL, MPI_SUM, contact->comm));
+  PetscCallMPI(MPI_Allgather(loc, (PetscMPIInt)(5 * nb), MPIU_REAL, all, (PetscMPIInt)(5 * nb), MPIU_REAL, contact->comm));
   for (PetscInt t = 0; t < contact->ntools; t++) {
     const ToolContact *tc = &contact->tc[t];
-    double             sh[3];
-    if (tc->block < 0) continue;
+    const PetscInt     b  = tc->block;
+    double             sh[3], T[3] = {0, 0, 0}, gmin = PETSC_MAX_REAL, n[3] = {0, 0, 0}, nact = 0;
+    if (b < 0) continue;
     ToolShift(&contact->tools[t], lambda, sh);
-    for (int k = 0; k < 3; k++) r[3 * tc->block + k] = tc->drive[k] == TOOL_DRIVE_FORCE ? fs[3 * tc->block + k] - ToolTarget(tc, k, lambda) : tc->d[k] - (sh[k] + tc->hold[k]);
+    for (PetscMPIInt p = 0; p < size; p++) { /* the smallest gap (the lowest rank on a tie) */
+      const PetscReal *l = all + 5 * nb * p + 5 * b;
+      nact += l[0];
+      if (l[1] < gmin) {
+        gmin = l[1];
+        for (int k = 0; k < 3; k++) n[k] = l[2 + k];
+      }
+    }
+    for (int k = 0; k < 3; k++)
+      if (tc->drive[k] == TOOL_DRIVE_FORCE) T[k] = ToolTarget(tc, k, lambda);
+    for (int k = 0; k < 3; k++) {
+      PetscReal f = fs[3 * b + k];
+      /* no node in contact: the penalty law continued across the gap of the tool's nearest paired
+         node with the regularising stiffness, f = -k_reg g n (zero at first touch, where the
+         contact rows take over; continuous in the target, so a zero target rests the tool on the
+         body) */
+      if (nact == 0 && gmin < PETSC_MAX_REAL) f = -tc->kreg * gmin * n[k];
+      r[3 * b + k] = tc->drive[k] == TOOL_DRIVE_FORCE ? f - T[k] : tc->d[k] - (sh[k] + tc->hold[k]);
+    }
   }
-  PetscCall(PetscFree(fs));
+  PetscCall(PetscFree3(fs, loc, all));
   PetscFunctionReturn(0);
 }
 
