@@ -95,7 +95,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsInsertString(NULL, "-mesh_type box -box_cells 2,2,1 -contact_set zmin -contact_penalty_normal 100 -contact_penalty_tangential 10 -contact_friction 0.3 "
                                            "-tool_names plane -tool_plane_patches 1 -tool_plane_patch0_type plane -tool_plane_patch0_origin 0,0,0 "
                                            "-tool_plane_patch0_e1 1,0,0 -tool_plane_patch0_e2 0,1,0 -tool_plane_patch0_range -2,3,-2,3 "
-                                           "-tool_plane_force_z -5 -tool_plane_force_amplitude 0,0,0.5,1,1,0.5"));
+                                           "-tool_plane_force_z 5 -tool_plane_force_amplitude 0,0,0.5,1,1,0.5"));
   PetscCall(PetscMemzero(&s, sizeof(s)));
   PetscCall(MeshSetFromOptions(PETSC_COMM_WORLD, &s.mo));
   PetscCall(BCSetFromOptions(PETSC_COMM_WORLD, &s.bcs));
@@ -133,7 +133,7 @@ int main(int argc, char **argv)
   Displace(&s.m, u, 0.01, 0.05); /* slip: K_T x 0.05 > mu t_N */
   PetscCall(ContactSeed(s.c, u, lam, PETSC_TRUE));
 
-  /* 1. the tool's row: the force it exerts on the body minus the target -5 a(0.7) = -5 x 0.8;
+  /* 1. the tool's row: the force it exerts on the body minus the target 5 a(0.7) = 5 x 0.8;
         the directions not driven by force: the unknown minus the prescribed displacement (0) */
   {
     PetscReal fz;
@@ -141,7 +141,7 @@ int main(int argc, char **argv)
     d[2] = -2e-3;
     PetscCall(Residual(&s, u, d, lam, f, r));
     PetscCall(ForceZ(&s, f, &fz));
-    CHECK_ALL(PetscAbsReal(r[2] - (fz + 4)) < 1e-12 * PetscAbsReal(fz) && r[0] == d[0] && r[1] == 0, "tool row: force on the body %g minus the target %g (residual %g); pinned rows: the unknown (%g, %g)", (double)fz, -4.0, (double)r[2], (double)r[0], (double)r[1]);
+    CHECK_ALL(PetscAbsReal(r[2] - (fz - 4)) < 1e-12 * PetscAbsReal(fz) && r[0] == d[0] && r[1] == 0, "tool row: force on the body %g minus the target %g (residual %g); pinned rows: the unknown (%g, %g)", (double)fz, 4.0, (double)r[2], (double)r[0], (double)r[1]);
     CHECK_ALL(fz > 9 * KN * 0.008, "the bottom nodes are pressed by the tool (force %g)", (double)fz);
   }
 
@@ -221,13 +221,13 @@ int main(int argc, char **argv)
     PetscCall(Jacobian(&s, u, d0, lam));
     if (rank == size - 1) J22 = Entry(s.J, s.nbody + 2, s.nbody + 2);
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &J22, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
-    CHECK_ALL(J22 == 9 * KN && r[2] == 4, "out of contact, beyond the search distance: the tool's diagonal is the sum of the penalties %g (got %g), its residual minus the target 4 (got %g)", 9 * KN, (double)J22, (double)r[2]);
+    CHECK_ALL(J22 == 9 * KN && r[2] == -4, "out of contact, beyond the search distance: the tool's diagonal is the sum of the penalties %g (got %g), its residual minus the target 4 (got %g)", 9 * KN, (double)J22, (double)r[2]);
     /* within the search distance: the penalty law continued across the nearest node's gap
        0.1 - 0.01 (1 + 0.3 + 0.1) with the regularising stiffness */
     d0[2] = -0.1;
     PetscCall(Residual(&s, u, d0, lam, f, r));
     {
-      const PetscReal expect = -9 * KN * (0.1 - 0.014) + 4;
+      const PetscReal expect = -9 * KN * (0.1 - 0.014) - 4;
       CHECK_ALL(PetscAbsReal(r[2] - expect) < 1e-12 * PetscAbsReal(expect), "out of contact, within the search distance: the tool's row is -k_reg g_min minus the target, %g (got %g)", (double)expect, (double)r[2]);
     }
   }

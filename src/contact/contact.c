@@ -1122,7 +1122,7 @@ PetscErrorCode ContactToolResidual(Contact contact, PetscReal lambda, PetscReal 
   for (PetscInt t = 0; t < contact->ntools; t++) {
     const ToolContact *tc = &contact->tc[t];
     const PetscInt     b  = tc->block;
-    double             sh[3], T[3] = {0, 0, 0}, gmin = PETSC_MAX_REAL, n[3] = {0, 0, 0}, nact = 0;
+    double             sh[3], T[3] = {0, 0, 0}, gmin = PETSC_MAX_REAL, n[3] = {0, 0, 0}, nact = 0, tn = 0, tns = 0;
     if (b < 0) continue;
     ToolShift(&contact->tools[t], lambda, sh);
     for (PetscMPIInt p = 0; p < size; p++) { /* the smallest gap (the lowest rank on a tie) */
@@ -1134,14 +1134,19 @@ PetscErrorCode ContactToolResidual(Contact contact, PetscReal lambda, PetscReal 
       }
     }
     for (int k = 0; k < 3; k++)
-      if (tc->drive[k] == TOOL_DRIVE_FORCE) T[k] = ToolTarget(tc, k, lambda);
+      if (tc->drive[k] == TOOL_DRIVE_FORCE) { /* the target along the normal, and its slope from the right */
+        T[k] = ToolTarget(tc, k, lambda);
+        tn += T[k] * n[k];
+        tns += tc->fscale[k] * (tc->famp[k].n ? LoadCurveSlope(&tc->famp[k], lambda) : 1) * n[k];
+      }
     for (int k = 0; k < 3; k++) {
       PetscReal f = fs[3 * b + k];
-      /* no node in contact: the penalty law continued across the gap of the tool's nearest paired
-         node with the regularising stiffness, f = -k_reg g n (zero at first touch, where the
-         contact rows take over; continuous in the target, so a zero target rests the tool on the
-         body) */
-      if (nact == 0 && gmin < PETSC_MAX_REAL) f = -tc->kreg * gmin * n[k];
+      /* no node in contact and the target pressing the tool onto the body (or zero and about to,
+         so that the residual is continuous in the load there): the penalty law continued across
+         the gap of the tool's nearest paired node with the regularising stiffness, f = -k_reg g n
+         (zero at first touch, where the contact rows take over). A zero target otherwise: the row
+         is zero, the tool holds its position. */
+      if (nact == 0 && gmin < PETSC_MAX_REAL && (tn > 0 || (tn == 0 && tns > 0))) f = -tc->kreg * gmin * n[k];
       r[3 * b + k] = tc->drive[k] == TOOL_DRIVE_FORCE ? f - T[k] : tc->d[k] - (sh[k] + tc->hold[k]);
     }
   }
