@@ -951,9 +951,10 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
    Along a direction that is not force-driven the row is r_k = d_k - (prescribed displacement):
    an identity row. While no node paired with the tool is in contact (the rows above vanish), the
    diagonal of the force-driven rows is the regularising stiffness kreg (the sum of the penalties
-   K_N of the tool's nodes): Newton then moves the tool by F/kreg along the target force, without
-   a singular matrix; a converged state has contact (or a zero target), so its residual,
-   and the equilibrium, are exact (doc/contact.md). */
+   K_N of the tool's nodes), and while the target presses the tool onto the body the force row
+   holds the penalty law continued across the nearest node's gap (ContactToolResidual): Newton
+   closes the gap without a singular matrix; a converged state has contact (or a zero target), so
+   its residual, and the equilibrium, are exact (doc/contact.md). */
 PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v, PetscInt *nfail_out)
 {
   PetscInt     nfail = 0;
