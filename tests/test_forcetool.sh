@@ -72,6 +72,11 @@ ok = len(da) == len(db) and all(abs(float(p[1]) - float(q[1])) <= 1e-8 * abs(flo
 print(("ok" if ok else "not ok") + " - -tool_holder_friction 0.5 changes the holder's friction force only: the die's normal force is the same at every step")
 PY
 
+# a node in both tools' sets pairs with the nearer tool and takes that tool's law: with both sets
+# on both tools the results are those of the run with one face per tool
+atrito 1 both $CASE -output_interval 0 -tool_die_contact_set zmin,zmax -tool_holder_contact_set zmax,zmin &&
+  for f in history contact; do $PY tests/compare_csv.py "$OUT/run1/$f.csv" "$OUT/both/$f.csv" --rtol 1e-10 --skip 'residual_*' --int-tol newton_its=1 --label "nodes in both tools' sets: $f.csv as with one set per tool"; done
+
 # 7. bad input: one-line errors naming the option
 bad() { # bad EXPECT NP ARGS...
   local expect=$1 np=$2; shift 2

@@ -724,10 +724,12 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     PetscCall(PetscPrintf(contact->comm, "contact: penalties per unit area; tributary areas of the slave nodes: total %.10g, smallest %g, largest %g\n", (double)asum, (double)amin, (double)amax));
   }
   {
-    PetscInt n = contact->ns;
+    PetscInt n = contact->ns, na;
+    char (*us)[ATRITO_NAME_LEN];
+    PetscCall(ContactGetAreaSets(contact, &na, &us)); /* the union of the tools' sets */
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, contact->comm));
-    if (contact->kauto) PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N per node (automatic), K_T %s, mu %g, %s tangent\n", n, contact->set[0], contact->nset > 1 ? ", ..." : "", contact->ntools, contact->ktauto ? "per node (automatic)" : "as given", (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
-    else PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, contact->set[0], contact->nset > 1 ? ", ..." : "", contact->ntools, (double)contact->law.KN, (double)contact->law.KT, (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
+    if (contact->kauto) PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N per node (automatic), K_T %s, mu %g, %s tangent\n", n, contact->uset[0], contact->nuset > 1 ? ", ..." : "", contact->ntools, contact->ktauto ? "per node (automatic)" : "as given", (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
+    else PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, contact->uset[0], contact->nuset > 1 ? ", ..." : "", contact->ntools, (double)contact->law.KN, (double)contact->law.KT, (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
     PetscCheck(n > 0, contact->comm, PETSC_ERR_USER_INPUT, "-contact_set '%s' holds no vertex", contact->set[0]);
   }
   /* per tool: its nodes, its own settings, its unknowns and the regularising stiffness (the sum of
