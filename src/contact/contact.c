@@ -254,7 +254,7 @@ static PetscErrorCode ToolContactSetFromOptions(Contact c, PetscInt t)
     PetscCall(PetscSNPrintf(help, sizeof(help), "Drive the tool along %c by force: the total force it exerts on the body along +%c is this value times the amplitude", ax[k], ax[k]));
     PetscCall(PetscOptionsReal(name, help, NULL, f[k], &f[k], &sf[k]));
   }
-  PetscCall(PetscOptionsString("-force_amplitude", "Amplitude a(t) of the forces of -force_x|y|z: a curve t0,a0,t1,a1,... or a two-column file (default: a(t) = t)", NULL, amp, amp, sizeof(amp), &samp));
+  PetscCall(PetscOptionsString("-force_amplitude", "Amplitude a(t) of the tool's forces (-tool_<name>_force_x|y|z): a curve t0,a0,t1,a1,... or a two-column file (default: a(t) = t)", NULL, amp, amp, sizeof(amp), &samp));
   PetscOptionsEnd();
   if (sset) {
     for (PetscInt k = 0; k < nsets; k++) {
