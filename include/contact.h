@@ -12,8 +12,14 @@
 #define ATRITO_CONTACT_H
 #include <petscmat.h>
 #include "mesh.h"
+#include "loadcurve.h"
 
 typedef struct _p_Contact *Contact;
+
+/* How a direction (x, y, z) of a tool is driven: by its prescribed displacement (ToolShift, or a
+   held position), or by a force: the tool's displacement along it is an unknown solved with the
+   body, so that the total force the tool exerts on the body along that axis equals the target. */
+typedef enum { TOOL_DRIVE_DISPLACEMENT = 0, TOOL_DRIVE_FORCE } ToolDrive;
 
 /* what contact.csv reports per tool and step, from the committed state (all ranks) */
 typedef struct {
@@ -34,6 +40,41 @@ typedef struct {
 } ContactToolResult;
 
 PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c);
+
+/* Force-driven tools (doc/contact.md, "Tools driven by force"). Every tool with a force-driven
+   direction (from -tool_<name>_force_x|y|z, or ContactSetToolDrive / ContactReserveToolUnknowns
+   before ContactSetUp) owns 3 unknowns, its displacement in x, y, z, appended to the body's
+   (ContactNumToolUnknowns; the directions not driven by force are pinned to their prescribed
+   displacement by an identity row). The set of such tools is fixed at ContactSetUp.
+
+   ContactSetToolDrive switches direction dir (0, 1, 2) of tool `tool` between the modes (at a
+   stage boundary, between steps): to TOOL_DRIVE_FORCE the unknown starts from the committed
+   position and the target force is the curve's value at the process time, force->v(t) itself
+   (absolute, copied); to TOOL_DRIVE_DISPLACEMENT the direction holds its committed position from
+   then on (plus any later change of the tool's prescribed displacement ToolShift). After
+   ContactSetUp only a tool that owns unknowns can be switched to force. */
+PetscErrorCode ContactSetToolDrive(Contact c, PetscInt tool, PetscInt dir, ToolDrive mode, const LoadCurve *force);
+/* before ContactSetUp: give the tool its unknowns although no direction is force-driven yet */
+PetscErrorCode ContactReserveToolUnknowns(Contact c, PetscInt tool);
+/* the first breakpoint after t of the force curves (amplitudes) of the force-driven directions
+   (PETSC_INFINITY if none), for the load stepper to land on */
+PetscReal      ContactNextKink(Contact c, PetscReal t);
+/* 3 x the number of tools with unknowns (0: no tool is force-driven; then nothing below applies) */
+PetscInt       ContactNumToolUnknowns(Contact c);
+/* the global index of the first tool unknown (they follow the body's) and whether this rank owns
+   them; before the first assembly */
+PetscErrorCode ContactSetToolDofs(Contact c, PetscInt first, PetscBool owner);
+/* the current values of the tool unknowns (3 per tool with unknowns, the same on every rank),
+   before an evaluation */
+PetscErrorCode ContactSetToolUnknowns(Contact c, const PetscReal *d);
+/* after ContactAssemble at the same iterate: the residual rows of the tool unknowns (all ranks,
+   collective): along a force-driven direction the force the tool exerts on the body minus the
+   target, along another the unknown minus the prescribed displacement */
+PetscErrorCode ContactToolResidual(Contact c, PetscReal lambda, PetscReal *r);
+/* checkpoint of the tools' committed state (replicated): ContactToolCheckpointWidth() values */
+PetscInt       ContactToolCheckpointWidth(Contact c);
+PetscErrorCode ContactToolCheckpointPack(Contact c, PetscReal *v);
+PetscErrorCode ContactToolCheckpointUnpack(Contact c, const PetscReal *v);
 /* -contact_* options and the tools (-tool_names, -tool_<name>_*) */
 PetscErrorCode ContactSetFromOptions(Contact c);
 /* the sets whose nodes need a tributary area (-contact_penalty_per_area), else n = 0 */
@@ -50,7 +91,8 @@ PetscInt       ContactNumSlaves(Contact c);
    at the local displacements u (with boundary values; start of a Newton iteration) */
 PetscErrorCode ContactSeed(Contact c, const PetscScalar *u, PetscReal lambda, PetscBool from_committed);
 /* contributions at u: residual into f (local, may be NULL), tangent into J (MatSetValues) or into
-   coo_v (coordinate assembly, in the order of ContactGetCOO); *nfail: failed projections */
+   coo_v (coordinate assembly, in the order of ContactGetCOO); *nfail: failed projections. With
+   tool unknowns the tangent includes their rows and columns, and the call is collective. */
 PetscErrorCode ContactAssemble(Contact c, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v, PetscInt *nfail);
 /* coordinate assembly: the (i, j) of the contact blocks; with ci = cj = NULL only the count */
 PetscErrorCode ContactGetCOO(Contact c, PetscCount *n, PetscInt *ci, PetscInt *cj);

@@ -40,7 +40,11 @@ typedef struct {
   PetscReal   *hist_c, *hist_t;
   ElementInfo *einfo;  /* per cell, from the last evaluation at a converged state */
 
-  /* solution */
+  /* solution: with force-driven tools (ntu > 0) the global vectors hold the body's unknowns (the
+     DM's global layout) followed, on the last rank, by the ntu tool unknowns (contact.h); Ubv and
+     Fbv are DM global vectors that view the body part of such a vector (VecPlaceArray) */
+  PetscInt  ntu, tbs;        /* tool unknowns; block size of the extended vectors */
+  Vec       Ubv, Fbv;
   Vec       U, Uc, Uprev;  /* current iterate, committed, previous committed (global)    */
   Vec       Uloc, Floc;    /* local work vectors                                        */
   PetscReal lambda;        /* load parameter at which the residual is evaluated         */
@@ -72,6 +76,10 @@ PetscErrorCode ProblemFormFunction(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode ProblemFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 /* Uloc = U with the boundary values at lambda */
 PetscErrorCode ProblemLocalWithBC(Problem *pb, Vec U, PetscReal lambda);
+/* the tool unknowns of a global vector (ntu values, the same on every rank; collective), and back
+   (the owner writes them) */
+PetscErrorCode ProblemGetToolValues(Problem *pb, Vec X, PetscReal *d);
+PetscErrorCode ProblemSetToolValues(Problem *pb, Vec X, const PetscReal *d);
 /* the trial state of the last evaluation (at a converged U) becomes the committed one */
 PetscErrorCode ProblemCommit(Problem *pb, PetscReal lambda);
 /* after a checkpoint was read: the trial states start from the committed ones */

@@ -40,6 +40,8 @@ run tool            bin/test_tool
 run contact-kernels bin/test_contact
 run contact-object-np1 mpiexec -n 1 bin/test_contact_object
 run contact-object-np2 mpiexec -n 2 bin/test_contact_object
+run toolforce-np1   mpiexec -n 1 bin/test_toolforce
+run toolforce-np2   mpiexec -n 2 bin/test_toolforce
 run output-np1      mpiexec -n 1 bin/test_output -output_dir "$TEST_OUT/output1"
 run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
 run lu-np1          mpiexec -n 1 bin/test_lu
@@ -54,6 +56,7 @@ run partition       bash tests/test_partition.sh
 run reference       bash tests/test_reference.sh
 run restart         bash tests/test_restart.sh
 run stages          bash tests/test_stages.sh
+run forcetool       bash tests/test_forcetool.sh
 run eas-solver      bash tests/test_eas.sh
 run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh

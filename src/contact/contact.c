@@ -17,9 +17,33 @@
    residual, the Jacobian and the frame update of a Newton iteration see one node position. */
 typedef struct {
   PetscReal  y[3], lambda;
+  PetscInt   gen;  /* the generation of the tool unknowns it was found at */
   PetscInt   tool; /* -1: no tool within the search distance; -2: empty */
   Projection pr;
 } PairMemo;
+
+/* A tool's contact settings (-tool_<name>_contact_set, _penalty_normal, _penalty_tangential,
+   _friction; the global -contact_* ones by default) and its drive: per direction, by the
+   prescribed displacement (ToolShift plus a held offset) or by a force (target fscale times the
+   amplitude: the curve famp, or the ramp a(t) = t when famp is empty), the displacement then an
+   unknown of the system (block >= 0: its 3 unknowns, the current values d). */
+typedef struct {
+  char       set[8][ATRITO_NAME_LEN];
+  PetscInt   nset;      /* 0: the global -contact_set                                          */
+  ContactLaw law;
+  PetscBool  kauto, ktauto;
+  PetscBool  own;       /* a setting of its own was given                                      */
+  ToolDrive  drive[3];
+  PetscReal  fscale[3];
+  LoadCurve  famp[3];
+  PetscReal  hold[3];   /* displacement drive: prescribed = ToolShift + hold                   */
+  PetscBool  reserve;   /* unknowns asked for before the setup                                  */
+  PetscInt   block;     /* index of its unknowns (3 from tdof0 + 3 block), -1: none            */
+  PetscReal  d[3];      /* the current values of its unknowns                                  */
+  PetscReal  dc[3];     /* its committed displacement (tools with unknowns)                    */
+  PetscReal  path_c;    /* path length of the committed displacements (tools with unknowns)    */
+  PetscReal  kreg;      /* regularising stiffness: the sum of the penalties K_N of its nodes    */
+} ToolContact;
 
 typedef struct {
   PetscInt  status;     /* CONTACT_OPEN / STICK / SLIP                                   */
@@ -78,13 +102,45 @@ struct _p_Contact {
   PetscReal     aug_pen, aug_dlam; /* largest penetration and multiplier change of the last  */
   PetscReal    *lam_r;         /* ns*3: the previous Uzawa increment (Aitken's relaxation)    */
   PetscReal     omega[2];      /* the previous relaxation factors (normal, tangential)        */
+  /* per-tool settings and drives, the tool unknowns */
+  ToolContact  *tc;            /* ntools                                                      */
+  char         *tmask;         /* ns*ntools: node i may pair with tool t (it is in the tool's sets) */
+  char        (*uset)[ATRITO_NAME_LEN]; /* the union of the sets of all tools                 */
+  PetscInt      nuset;
+  PetscBool     kanyauto;      /* some tool has the automatic penalty                         */
+  PetscInt      nb;            /* tools with unknowns                                         */
+  PetscInt      tdof0;         /* global index of the first tool unknown                      */
+  PetscBool     towner;        /* this rank owns the tool unknowns                            */
+  PetscInt      gen;           /* changes whenever the values of the tool unknowns change     */
   PetscLogEvent ev_contact, ev_pairing;
 };
+
+/* The tool's displacement now: along a force-driven direction its unknown, along the others the
+   prescribed displacement (plus the held offset). A tool without unknowns: ToolShift. */
+static void CurShift(const struct _p_Contact *contact, PetscInt t, PetscReal lambda, double sh[3])
+{
+  const ToolContact *tc = &contact->tc[t];
+  ToolShift(&contact->tools[t], lambda, sh);
+  if (tc->block < 0) return;
+  for (int k = 0; k < 3; k++) sh[k] = tc->drive[k] == TOOL_DRIVE_FORCE ? tc->d[k] : sh[k] + tc->hold[k];
+}
+
+/* the tool's committed displacement */
+static void CommittedShift(const struct _p_Contact *contact, PetscInt t, double sh[3])
+{
+  const ToolContact *tc = &contact->tc[t];
+  if (tc->block < 0) ToolShift(&contact->tools[t], contact->lambda_c, sh);
+  else
+    for (int k = 0; k < 3; k++) sh[k] = tc->dc[k];
+}
+
+/* the target force along direction k at the process time t */
+static PetscReal ToolTarget(const ToolContact *tc, int k, PetscReal t) { return tc->fscale[k] * (tc->famp[k].n ? LoadCurveEval(&tc->famp[k], t) : t); }
 
 /* The tool whose closest point to y has the smallest gap (bounding boxes first). Returns the tool
    index or -1 when no tool is within the search distance. cs: the node's committed state (NULL:
    none), whose pairing is the hint of its tool's projection (the same result, found faster). */
-static PetscInt Pair(const struct _p_Contact *contact, const double y[3], PetscReal lambda, const ContactState *cs, Projection *best)
+static PetscInt Pair(const struct _p_Contact *contact, const char *mask, const double y[3], PetscReal lambda, const ContactState *cs, Projection *best)
 {
   const Projection hint = {.patch = cs ? (int)cs->patch : -1, .xi = cs ? cs->xi : 0.0, .eta = cs ? cs->eta : 0.0};
   PetscInt tbest = -1;
@@ -92,7 +148,8 @@ static PetscInt Pair(const struct _p_Contact *contact, const double y[3], PetscR
     const Tool *tl = &contact->tools[t];
     double      sh[3], d2 = 0;
     Projection  pr;
-    ToolShift(tl, lambda, sh);
+    if (!mask[t]) continue; /* the node is in none of the tool's sets */
+    CurShift(contact, t, lambda, sh);
     for (int k = 0; k < 3; k++) {
       const double lo = tl->bbox[2 * k] + sh[k], hi = tl->bbox[2 * k + 1] + sh[k];
       const double e  = y[k] < lo ? lo - y[k] : (y[k] > hi ? y[k] - hi : 0);
@@ -112,13 +169,14 @@ static PetscInt Pair(const struct _p_Contact *contact, const double y[3], PetscR
 static PetscInt PairNode(const struct _p_Contact *contact, PetscInt i, const double y[3], PetscReal lambda, Projection *pr)
 {
   PairMemo *m = &contact->pmemo[i];
-  if (m->tool != -2 && m->lambda == lambda && m->y[0] == y[0] && m->y[1] == y[1] && m->y[2] == y[2]) {
+  if (m->tool != -2 && m->lambda == lambda && m->gen == contact->gen && m->y[0] == y[0] && m->y[1] == y[1] && m->y[2] == y[2]) {
     if (m->tool >= 0) *pr = m->pr;
     return m->tool;
   }
-  m->tool = Pair(contact, y, lambda, &contact->cst_c[i], &m->pr);
+  m->tool = Pair(contact, contact->tmask + i * contact->ntools, y, lambda, &contact->cst_c[i], &m->pr);
   for (int k = 0; k < 3; k++) m->y[k] = y[k];
   m->lambda = lambda;
+  m->gen    = contact->gen;
   if (m->tool >= 0) *pr = m->pr;
   return m->tool;
 }
@@ -160,6 +218,166 @@ static PetscErrorCode PenaltyValue(MPI_Comm comm, const char *opt, const char *b
   if (*isauto) PetscFunctionReturn(0);
   *v = strtod(buf, &end);
   PetscCheck(end != buf && *end == 0, comm, PETSC_ERR_USER_INPUT, "%s '%s' is neither a number nor auto", opt, buf);
+  PetscFunctionReturn(0);
+}
+
+/* the contact settings and the drive of tool t, in its own block (prefix tool_<name>_, title
+   "Tool <name> contact"); the global -contact_* values by default. Errors are raised after the
+   block is closed. */
+static PetscErrorCode ToolContactSetFromOptions(Contact c, PetscInt t)
+{
+  MPI_Comm     comm = c->comm;
+  const Tool  *tl   = &c->tools[t];
+  ToolContact *tc   = &c->tc[t];
+  const char  *ax   = "xyz";
+  char         prefix[PETSC_MAX_PATH_LEN], title[PETSC_MAX_PATH_LEN], kn[64] = "", kt[64] = "", amp[PETSC_MAX_PATH_LEN] = "";
+  char        *sets[8];
+  PetscInt     nsets = 8;
+  PetscBool    sset = PETSC_FALSE, skn = PETSC_FALSE, skt = PETSC_FALSE, smu = PETSC_FALSE, sf[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE}, samp = PETSC_FALSE;
+  PetscReal    f[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  tc->law    = c->law;
+  tc->kauto  = c->kauto;
+  tc->ktauto = c->ktauto;
+  tc->block  = -1;
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "tool_%s_", tl->name));
+  PetscCall(PetscSNPrintf(title, sizeof(title), "Tool %s contact", tl->name));
+  PetscOptionsBegin(comm, prefix, title, NULL);
+  PetscCall(PetscOptionsStringArray("-contact_set", "Mesh sets of the slave nodes in contact with this tool (their union; default -contact_set)", NULL, sets, &nsets, &sset));
+  PetscCall(PetscOptionsString("-penalty_normal", "Normal penalty K_N of this tool's contact, or auto (default -contact_penalty_normal)", NULL, kn, kn, sizeof(kn), &skn));
+  PetscCall(PetscOptionsString("-penalty_tangential", "Tangential penalty K_T of this tool's contact, or auto (default -contact_penalty_tangential)", NULL, kt, kt, sizeof(kt), &skt));
+  PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient of this tool's contact (default -contact_friction)", NULL, tc->law.mu, &tc->law.mu, &smu));
+  for (int k = 0; k < 3; k++) {
+    char name[16], help[160];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-force_%c", ax[k]));
+    PetscCall(PetscSNPrintf(help, sizeof(help), "Drive the tool along %c by force: the total force it exerts on the body along +%c is this value times the amplitude", ax[k], ax[k]));
+    PetscCall(PetscOptionsReal(name, help, NULL, f[k], &f[k], &sf[k]));
+  }
+  PetscCall(PetscOptionsString("-force_amplitude", "Amplitude a(t) of the tool's forces (-tool_<name>_force_x|y|z): a curve t0,a0,t1,a1,... or a two-column file (default: a(t) = t)", NULL, amp, amp, sizeof(amp), &samp));
+  PetscOptionsEnd();
+  if (sset) {
+    for (PetscInt k = 0; k < nsets; k++) {
+      PetscCall(PetscStrncpy(tc->set[k], sets[k], sizeof(tc->set[k])));
+      PetscCall(PetscFree(sets[k]));
+    }
+    tc->nset = nsets;
+    PetscCheck(nsets > 0, comm, PETSC_ERR_USER_INPUT, "-tool_%s_contact_set names no set", tl->name);
+  }
+  if (skn) {
+    char opt[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tool_%s_penalty_normal", tl->name));
+    PetscCall(PenaltyValue(comm, opt, kn, &tc->kauto, &tc->law.KN));
+    PetscCheck(tc->kauto || (tc->law.KN > 0 && PetscIsNormalReal(tc->law.KN)), comm, PETSC_ERR_USER_INPUT, "%s %g must be positive", opt, (double)tc->law.KN);
+    if (!skt) { /* the tangential default follows the tool's normal one, as the global ones do */
+      if (tc->kauto) tc->ktauto = PETSC_TRUE;
+      else if (c->ktauto) {
+        tc->ktauto = PETSC_FALSE;
+        tc->law.KT = 5e3;
+      }
+    }
+  }
+  if (skt) {
+    char opt[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tool_%s_penalty_tangential", tl->name));
+    PetscCall(PenaltyValue(comm, opt, kt, &tc->ktauto, &tc->law.KT));
+    PetscCheck(tc->ktauto || (tc->law.KT > 0 && PetscIsNormalReal(tc->law.KT)), comm, PETSC_ERR_USER_INPUT, "%s %g must be positive", opt, (double)tc->law.KT);
+  }
+  PetscCheck(!tc->ktauto || tc->kauto, comm, PETSC_ERR_USER_INPUT, "-tool_%s_penalty_tangential auto needs the automatic normal penalty (-tool_%s_penalty_normal auto)", tl->name, tl->name);
+  PetscCheck(!(c->per_area && tc->kauto), comm, PETSC_ERR_USER_INPUT, "-tool_%s_penalty_normal auto does not combine with -contact_penalty_per_area", tl->name);
+  PetscCheck(tc->law.mu >= 0 && (tc->law.mu == 0 || PetscIsNormalReal(tc->law.mu)), comm, PETSC_ERR_USER_INPUT, "-tool_%s_friction %g must be >= 0", tl->name, (double)tc->law.mu);
+  tc->own = (sset || skn || skt || smu) ? PETSC_TRUE : PETSC_FALSE;
+  for (int k = 0; k < 3; k++) {
+    PetscBool moves = tl->motion[k] != 0 ? PETSC_TRUE : PETSC_FALSE;
+    for (int p = 0; p < tl->npath; p++)
+      if (tl->path[4 * p + 1 + k] != 0) moves = PETSC_TRUE;
+    if (!sf[k]) continue;
+    PetscCheck(PetscIsNormalReal(f[k]) || f[k] == 0, comm, PETSC_ERR_USER_INPUT, "-tool_%s_force_%c %g must be a finite number", tl->name, ax[k], (double)f[k]);
+    PetscCheck(!moves, comm, PETSC_ERR_USER_INPUT, "-tool_%s_force_%c: the tool's -tool_%s_motion or -tool_%s_path moves it along %c too; a direction is driven by force or by displacement", tl->name, ax[k], tl->name, tl->name, ax[k]);
+    tc->drive[k]  = TOOL_DRIVE_FORCE;
+    tc->fscale[k] = f[k];
+    tc->reserve   = PETSC_TRUE;
+  }
+  if (samp) {
+    char opt[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tool_%s_force_amplitude", tl->name));
+    PetscCheck(sf[0] || sf[1] || sf[2], comm, PETSC_ERR_USER_INPUT, "%s: the tool has no -tool_%s_force_x|y|z", opt, tl->name);
+    PetscCall(LoadCurveParse(comm, opt, amp, &tc->famp[0]));
+    for (int k = 1; k < 3; k++) PetscCall(LoadCurveDuplicate(&tc->famp[0], &tc->famp[k]));
+    for (int k = 0; k < 3; k++)
+      if (!sf[k]) PetscCall(LoadCurveDestroy(&tc->famp[k]));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSetToolDrive(Contact c, PetscInt tool, PetscInt dir, ToolDrive mode, const LoadCurve *force)
+{
+  ToolContact *tc;
+
+  PetscFunctionBeginUser;
+  PetscCheck(tool >= 0 && tool < c->ntools, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactSetToolDrive: tool %" PetscInt_FMT " of %" PetscInt_FMT, tool, c->ntools);
+  PetscCheck(dir >= 0 && dir < 3, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactSetToolDrive: direction %" PetscInt_FMT " is not 0, 1 or 2", dir);
+  tc = &c->tc[tool];
+  if (mode == TOOL_DRIVE_FORCE) {
+    PetscCheck(force && force->n > 0, c->comm, PETSC_ERR_ARG_WRONG, "ContactSetToolDrive: tool %s driven by force along %c needs a force curve", c->tools[tool].name, "xyz"[dir]);
+    PetscCheck(!c->mesh || tc->block >= 0, c->comm, PETSC_ERR_ARG_WRONG, "tool %s: driven by force along %c after the setup, but it has no unknowns (give it a -tool_%s_force_ option or reserve them before the setup)", c->tools[tool].name, "xyz"[dir], c->tools[tool].name);
+    PetscCall(LoadCurveDestroy(&tc->famp[dir]));
+    PetscCall(LoadCurveDuplicate(force, &tc->famp[dir]));
+    tc->fscale[dir] = 1;
+    tc->drive[dir]  = TOOL_DRIVE_FORCE;
+    tc->reserve     = PETSC_TRUE;
+  } else {
+    double s[3];
+    /* hold the committed position: prescribed = ToolShift + hold equals it at the committed load */
+    ToolShift(&c->tools[tool], c->lambda_c, s);
+    if (tc->block >= 0) tc->hold[dir] = tc->dc[dir] - s[dir];
+    tc->drive[dir] = TOOL_DRIVE_DISPLACEMENT;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactReserveToolUnknowns(Contact c, PetscInt tool)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(tool >= 0 && tool < c->ntools, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactReserveToolUnknowns: tool %" PetscInt_FMT " of %" PetscInt_FMT, tool, c->ntools);
+  PetscCheck(!c->mesh, c->comm, PETSC_ERR_ORDER, "ContactReserveToolUnknowns: tool %s after the setup", c->tools[tool].name);
+  c->tc[tool].reserve = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscReal ContactNextKink(Contact c, PetscReal t)
+{
+  PetscReal k = PETSC_INFINITY;
+  for (PetscInt i = 0; i < c->ntools; i++)
+    for (int d = 0; d < 3; d++)
+      if (c->tc[i].drive[d] == TOOL_DRIVE_FORCE && c->tc[i].famp[d].n) k = PetscMin(k, LoadCurveNextKink(&c->tc[i].famp[d], t));
+  return k;
+}
+
+PetscInt ContactNumToolUnknowns(Contact c) { return 3 * c->nb; }
+
+PetscErrorCode ContactSetToolDofs(Contact c, PetscInt first, PetscBool owner)
+{
+  PetscFunctionBeginUser;
+  c->tdof0  = first;
+  c->towner = owner;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSetToolUnknowns(Contact c, const PetscReal *d)
+{
+  PetscBool changed = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  for (PetscInt t = 0; t < c->ntools; t++) {
+    ToolContact *tc = &c->tc[t];
+    if (tc->block < 0) continue;
+    for (int k = 0; k < 3; k++) {
+      if (tc->d[k] != d[3 * tc->block + k]) changed = PETSC_TRUE;
+      tc->d[k] = d[3 * tc->block + k];
+    }
+  }
+  if (changed) c->gen++; /* the pairings found at the old tool positions are stale */
   PetscFunctionReturn(0);
 }
 
@@ -240,14 +458,43 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   PetscCheck(c->symmetry == 0 || c->symmetry >= 1, comm, PETSC_ERR_USER_INPUT, "-model_symmetry %g must be >= 1", (double)c->symmetry);
   PetscOptionsEnd();
   PetscCall(ToolsCreateFromOptions(comm, &c->ntools, &c->tools));
+  PetscCall(PetscCalloc1(c->ntools + 1, &c->tc));
+  for (PetscInt t = 0; t < c->ntools; t++) PetscCall(ToolContactSetFromOptions(c, t));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode ContactGetAreaSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN])
 {
+  PetscBool anyauto = c->kauto;
   PetscFunctionBeginUser;
-  *n    = (c->ntools && (c->per_area || c->kauto || c->aug)) ? c->nset : 0;
+  *n    = 0;
   *sets = c->set;
+  for (PetscInt t = 0; t < c->ntools; t++) anyauto = anyauto || c->tc[t].kauto;
+  if (!c->uset) { /* the union of the tools' sets (the global ones first) */
+    PetscInt nmax = c->nset;
+    for (PetscInt t = 0; t < c->ntools; t++) nmax += c->tc[t].nset;
+    PetscCall(PetscCalloc1(nmax + 1, &c->uset));
+    for (PetscInt t = -1; t < c->ntools; t++) {
+      const PetscInt ns = t < 0 ? c->nset : c->tc[t].nset;
+      if (t < 0) { /* the global sets, when some tool uses them */
+        PetscBool used = c->ntools ? PETSC_FALSE : PETSC_TRUE;
+        for (PetscInt u = 0; u < c->ntools; u++) used = used || !c->tc[u].nset;
+        if (!used) continue;
+      }
+      for (PetscInt k = 0; k < ns; k++) {
+        const char *nm  = t < 0 ? c->set[k] : c->tc[t].set[k];
+        PetscBool   dup = PETSC_FALSE;
+        for (PetscInt j = 0; j < c->nuset; j++) {
+          PetscBool eq;
+          PetscCall(PetscStrcmp(c->uset[j], nm, &eq));
+          dup = dup || eq;
+        }
+        if (!dup) PetscCall(PetscStrncpy(c->uset[c->nuset++], nm, sizeof(c->uset[0])));
+      }
+    }
+  }
+  *n    = (c->ntools && (c->per_area || anyauto || c->aug)) ? c->nuset : 0;
+  *sets = c->uset;
   PetscFunctionReturn(0);
 }
 
@@ -320,13 +567,15 @@ static PetscErrorCode ElementSizes(Contact contact, PetscReal *h)
   PetscFunctionReturn(0);
 }
 
-/* the law of slave node i: its own penalties (automatic), or the given ones (times its area) */
-static inline ContactLaw NodeLaw(const struct _p_Contact *contact, PetscInt i)
+/* the law of slave node i against tool t (the tool's settings, the global ones by default): its
+   own penalties (automatic), or the given ones (times its area) */
+static inline ContactLaw NodeLaw(const struct _p_Contact *contact, PetscInt i, PetscInt t)
 {
-  ContactLaw law = contact->law;
-  if (contact->kn) {
+  const ToolContact *tc  = &contact->tc[t < 0 ? 0 : t];
+  ContactLaw         law = tc->law;
+  if (tc->kauto) {
     law.KN = contact->kn[i];
-    law.KT = contact->kt[i];
+    law.KT = tc->ktauto ? contact->kratio * contact->kn[i] : tc->law.KT;
   } else if (contact->per_area) { /* penalties per unit area times the node's tributary area */
     law.KN *= contact->mesh->varea[contact->slave[i]];
     law.KT *= contact->mesh->varea[contact->slave[i]];
@@ -351,14 +600,48 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     }
   }
 
+  /* the slave nodes: the union of the tools' sets; tmark[v * ntools + t]: vertex v may pair with
+     tool t (it lies in one of the tool's sets, the global -contact_set by default) */
+  const PetscInt nt = contact->ntools;
+  char          *tmark;
   PetscCall(PetscCalloc1(m->nv, &mark));
-  for (PetscInt s = 0; s < contact->nset; s++) {
-    PetscCall(MeshMarkSetVertices(m, contact->set[s], mark, &found));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, contact->comm));
-    PetscCheck(found, contact->comm, PETSC_ERR_USER_INPUT, "-contact_set: the mesh has no set named '%s'", contact->set[s]);
+  PetscCall(PetscCalloc1(m->nv * nt, &tmark));
+  {
+    PetscBool used = PETSC_FALSE;
+    for (PetscInt t = 0; t < nt; t++) used = used || !contact->tc[t].nset;
+    if (used) {
+      PetscBool *gm;
+      PetscCall(PetscCalloc1(m->nv, &gm));
+      for (PetscInt s = 0; s < contact->nset; s++) {
+        PetscCall(MeshMarkSetVertices(m, contact->set[s], gm, &found));
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, contact->comm));
+        PetscCheck(found, contact->comm, PETSC_ERR_USER_INPUT, "-contact_set: the mesh has no set named '%s'", contact->set[s]);
+      }
+      for (PetscInt v = 0; v < m->nv; v++)
+        for (PetscInt t = 0; t < nt; t++)
+          if (gm[v] && !contact->tc[t].nset) tmark[v * nt + t] = 1;
+      PetscCall(PetscFree(gm));
+    }
+    for (PetscInt t = 0; t < nt; t++) {
+      PetscBool *tm;
+      if (!contact->tc[t].nset) continue;
+      PetscCall(PetscCalloc1(m->nv, &tm));
+      for (PetscInt s = 0; s < contact->tc[t].nset; s++) {
+        PetscCall(MeshMarkSetVertices(m, contact->tc[t].set[s], tm, &found));
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_BOOL, MPI_LOR, contact->comm));
+        PetscCheck(found, contact->comm, PETSC_ERR_USER_INPUT, "-tool_%s_contact_set: the mesh has no set named '%s'", contact->tools[t].name, contact->tc[t].set[s]);
+      }
+      for (PetscInt v = 0; v < m->nv; v++)
+        if (tm[v]) tmark[v * nt + t] = 1;
+      PetscCall(PetscFree(tm));
+    }
+    for (PetscInt v = 0; v < m->nv; v++)
+      for (PetscInt t = 0; t < nt; t++)
+        if (tmark[v * nt + t]) mark[v] = PETSC_TRUE;
   }
   for (PetscInt v = 0; v < m->nv; v++)
     if (mark[v] && m->vowned[v]) contact->ns++;
+  PetscCall(PetscMalloc1(contact->ns * nt + 1, &contact->tmask));
   PetscCall(PetscMalloc4(contact->ns, &contact->slave, 3 * contact->ns, &contact->sgdof, 3 * contact->ns, &contact->seed, contact->ns, &contact->has_seed));
   PetscCall(PetscCalloc2(contact->ns, &contact->active_prev, contact->ns, &contact->tN_prev));
   PetscCall(PetscMalloc1(contact->ns, &contact->pmemo));
@@ -370,6 +653,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     const PetscInt i = contact->ns++;
     contact->slave[i]     = v;
     PetscCall(MeshVertexDofs(m, v, contact->sgdof + 3 * i));
+    for (PetscInt t = 0; t < nt; t++) contact->tmask[i * nt + t] = tmark[v * nt + t];
     contact->has_seed[i] = PETSC_FALSE;
     for (int k = 0; k < 3; k++) contact->cst_c[i].y[k] = m->X[3 * v + k];
     contact->cst_c[i].tool = contact->cst_c[i].patch = -1;
@@ -379,7 +663,9 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     contact->lam_tool[i]                        = -1;
   }
   PetscCall(PetscFree(mark));
-  if (contact->kauto || contact->aug) { /* element sizes: the automatic penalty, the relative tolerance */
+  PetscCall(PetscFree(tmark));
+  for (PetscInt t = 0; t < nt; t++) contact->kanyauto = contact->kanyauto || contact->tc[t].kauto;
+  if (contact->kanyauto || contact->aug) { /* element sizes: the automatic penalty, the relative tolerance */
     PetscReal *h, hmin = PETSC_MAX_REAL;
     PetscInt   nzero = 0;
     PetscCheck(m->varea, contact->comm, PETSC_ERR_PLIB, "contact: the mesh carries no tributary areas");
@@ -392,7 +678,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hmin, 1, MPIU_REAL, MPI_MIN, contact->comm));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nzero, 1, MPIU_INT, MPI_SUM, contact->comm));
     contact->hmin = hmin < PETSC_MAX_REAL ? hmin : 0;
-    if (contact->kauto) {
+    if (contact->kanyauto) {
       PetscReal E, kmin = PETSC_MAX_REAL, kmax = 0;
       PetscCheck(!nzero, contact->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, contact->set[0], contact->nset > 1 ? ", ..." : "");
       /* the body's Young's modulus, from its material (ContactSetYoungModulus) */
@@ -438,11 +724,46 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     PetscCall(PetscPrintf(contact->comm, "contact: penalties per unit area; tributary areas of the slave nodes: total %.10g, smallest %g, largest %g\n", (double)asum, (double)amin, (double)amax));
   }
   {
-    PetscInt n = contact->ns;
+    PetscInt n = contact->ns, na;
+    char (*us)[ATRITO_NAME_LEN];
+    PetscCall(ContactGetAreaSets(contact, &na, &us)); /* the union of the tools' sets */
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, contact->comm));
-    if (contact->kauto) PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N per node (automatic), K_T %s, mu %g, %s tangent\n", n, contact->set[0], contact->nset > 1 ? ", ..." : "", contact->ntools, contact->ktauto ? "per node (automatic)" : "as given", (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
-    else PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, contact->set[0], contact->nset > 1 ? ", ..." : "", contact->ntools, (double)contact->law.KN, (double)contact->law.KT, (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
+    if (contact->kauto) PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N per node (automatic), K_T %s, mu %g, %s tangent\n", n, contact->uset[0], contact->nuset > 1 ? ", ..." : "", contact->ntools, contact->ktauto ? "per node (automatic)" : "as given", (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
+    else PetscCall(PetscPrintf(contact->comm, "contact: %" PetscInt_FMT " slave nodes (set '%s'%s), %" PetscInt_FMT " tools, K_N %g, K_T %g, mu %g, %s tangent\n", n, contact->uset[0], contact->nuset > 1 ? ", ..." : "", contact->ntools, (double)contact->law.KN, (double)contact->law.KT, (double)contact->law.mu, contact->fd ? "finite-difference" : "analytic"));
     PetscCheck(n > 0, contact->comm, PETSC_ERR_USER_INPUT, "-contact_set '%s' holds no vertex", contact->set[0]);
+  }
+  /* per tool: its nodes, its own settings, its unknowns and the regularising stiffness (the sum of
+     the penalties K_N of the nodes that may pair with it) */
+  contact->nb = 0;
+  for (PetscInt t = 0; t < nt; t++) {
+    ToolContact *tc = &contact->tc[t];
+    PetscReal    loc[2] = {0, 0};
+    for (PetscInt i = 0; i < contact->ns; i++)
+      if (contact->tmask[i * nt + t]) {
+        loc[0] += 1;
+        loc[1] += NodeLaw(contact, i, t).KN;
+      }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_REAL, MPI_SUM, contact->comm));
+    tc->kreg  = loc[1];
+    tc->block = tc->reserve ? contact->nb++ : -1;
+    if (tc->own || tc->block >= 0) {
+      char drv[160] = "";
+      if (tc->block >= 0) {
+        size_t l = 0;
+        PetscCall(PetscStrncpy(drv, ", driven by force along", sizeof(drv)));
+        for (int k = 0; k < 3; k++)
+          if (tc->drive[k] == TOOL_DRIVE_FORCE) {
+            PetscCall(PetscStrlen(drv, &l));
+            PetscCall(PetscSNPrintf(drv + l, sizeof(drv) - l, " %c (%g%s)", "xyz"[k], (double)tc->fscale[k], tc->famp[k].n ? " x amplitude" : " x t"));
+          }
+        PetscCall(PetscStrlen(drv, &l));
+        PetscCall(PetscSNPrintf(drv + l, sizeof(drv) - l, ", regularising stiffness %g", (double)tc->kreg));
+      }
+      if (tc->kauto) PetscCall(PetscPrintf(contact->comm, "contact: tool %s: %" PetscInt_FMT " slave nodes, K_N per node (automatic), K_T %s, mu %g%s\n", contact->tools[t].name, (PetscInt)loc[0], tc->ktauto ? "per node (automatic)" : "as given", (double)tc->law.mu, drv));
+      else PetscCall(PetscPrintf(contact->comm, "contact: tool %s: %" PetscInt_FMT " slave nodes, K_N %g, K_T %g, mu %g%s\n", contact->tools[t].name, (PetscInt)loc[0], (double)tc->law.KN, (double)tc->law.KT, (double)tc->law.mu, drv));
+    }
+    PetscCheck(loc[0] > 0 || !tc->own, contact->comm, PETSC_ERR_USER_INPUT, "-tool_%s_contact_set '%s' holds no vertex", contact->tools[t].name, tc->nset ? tc->set[0] : contact->set[0]);
+    PetscCheck(tc->block < 0 || tc->kreg > 0, contact->comm, PETSC_ERR_USER_INPUT, "tool %s is driven by force but no slave node may touch it (-tool_%s_contact_set)", contact->tools[t].name, contact->tools[t].name);
   }
   PetscFunctionReturn(0);
 }
@@ -460,7 +781,12 @@ PetscErrorCode ContactDestroy(Contact *c)
     PetscCall(PetscFree2(contact->cst_c, contact->cst_t));
     PetscCall(PetscFree3(contact->lam, contact->lam_tool, contact->lam_r));
     PetscCall(PetscFree2(contact->kn, contact->kt));
+    PetscCall(PetscFree(contact->tmask));
   }
+  for (PetscInt t = 0; contact->tc && t < contact->ntools; t++)
+    for (int k = 0; k < 3; k++) PetscCall(LoadCurveDestroy(&contact->tc[t].famp[k]));
+  PetscCall(PetscFree(contact->tc));
+  PetscCall(PetscFree(contact->uset));
   PetscCall(ToolsDestroy(contact->ntools, &contact->tools));
   PetscCall(PetscFree(*c));
   PetscFunctionReturn(0);
@@ -504,7 +830,7 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
       /* start of a Newton iteration: eq 30, t2 = n x t1(previous iteration), t1 = t2 x n, for the
          nodes in contact; a node out of contact forgets its frame */
       const double lN    = contact->lam_tool[i] == tool ? contact->lam[3 * i] : 0;
-      const PetscBool in = (pr.gap <= 0 || (lN > 0 && lN - NodeLaw(contact, i).KN * pr.gap > 0)) ? PETSC_TRUE : PETSC_FALSE;
+      const PetscBool in = (pr.gap <= 0 || (lN > 0 && lN - NodeLaw(contact, i, tool).KN * pr.gap > 0)) ? PETSC_TRUE : PETSC_FALSE;
       if (in && contact->has_seed[i] && !ContactFrame(pr.n, contact->seed + 3 * i, t1, t2))
         for (int k = 0; k < 3; k++) contact->seed[3 * i + k] = t1[k];
       else if (!in) contact->has_seed[i] = PETSC_FALSE;
@@ -525,7 +851,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
   Projection          pr;
   double              sh[3], shc[3], ds[3], tTn[2] = {0, 0}, dn[9], *dnp = NULL;
   PetscInt            tool;
-  const ContactLaw    law = NodeLaw(contact, i);
+  ContactLaw          law;
   double              lN  = 0;
 
   memset(R, 0, 3 * sizeof(double));
@@ -547,6 +873,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
   st->patch = pr.patch;
   st->xi    = pr.xi;
   st->eta   = pr.eta;
+  law       = NodeLaw(contact, i, tool);
   /* the multipliers of the current solve (the committed state's at the start of a step) */
   if (contact->lam_tool[i] == tool) {
     lN     = contact->lam[3 * i];
@@ -556,8 +883,8 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
   if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0)) return 0;
 
   const Tool *tl = &contact->tools[tool];
-  ToolShift(tl, lambda, sh);
-  ToolShift(tl, contact->lambda_c, shc);
+  CurShift(contact, tool, lambda, sh);
+  CommittedShift(contact, tool, shc);
   /* slip increment: the node's displacement relative to the tool over the step */
   for (int k = 0; k < 3; k++) ds[k] = (y[k] - cc->y[k]) - (sh[k] - shc[k]);
   if (K && !contact->fd) {
@@ -602,14 +929,46 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
   return 0;
 }
 
+/* Tools driven by force: the coupling with the tool unknowns.
+
+   A tool T with unknowns has the displacement d (3 components; along a force-driven direction the
+   unknown, along the others the prescribed displacement, which does not depend on the unknowns).
+   Everything a node i paired with T contributes depends on d only through y - d:
+   * the projection of y on the tool translated by d is the projection of y - d on the tool at rest,
+     translated by d: the gap g = (y - x).n, the normal n and its derivative dn/dy are functions of
+     y - d (the closest point x moves with the tool);
+   * the slip increment ds = (y - y_n) - (d - d_n) is a function of y - d (the committed y_n, d_n
+     are fixed within a step);
+   * the frame seed and the multipliers are fixed within a Newton iteration.
+   So R_i = R_i(y - d), and with K_i = dR_i/dy (the node's 3x3 block, analytic or by differences)
+
+       dR_i/dd = -K_i                (node rows, tool columns)
+
+   restricted to the force-driven columns. The tool's residual rows along a force-driven
+   direction k are r_k = sum_i f_i,k - F_k(t), f_i = -R_i the force on node i (the force the tool
+   exerts on the body), so
+
+       dr_k/dy_i = -K_i[k, :],       dr_k/dd_l = sum_i K_i[k, l]   (l force-driven).
+
+   Along a direction that is not force-driven the row is r_k = d_k - (prescribed displacement):
+   an identity row. While no node paired with the tool is in contact (the rows above vanish), the
+   diagonal of the force-driven rows is the regularising stiffness kreg (the sum of the penalties
+   K_N of the tool's nodes), and while the target presses the tool onto the body the force row
+   holds the penalty law continued across the nearest node's gap (ContactToolResidual): Newton
+   closes the gap without a singular matrix; a converged state has contact (or a zero target), so
+   its residual, and the equilibrium, are exact (doc/contact.md). */
 PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v, PetscInt *nfail_out)
 {
-  PetscInt nfail = 0;
+  PetscInt     nfail = 0;
+  const PetscInt nb = contact->nb, nt = contact->ntools;
+  PetscScalar *kt   = NULL; /* 9 nb: the tool x tool blocks, sums over this rank's nodes */
+  PetscInt    *nact = NULL; /* nb: nodes in contact with each tool                      */
 
   PetscFunctionBeginUser;
   *nfail_out = 0;
-  if (!contact->ns) PetscFunctionReturn(0);
+  if (!contact->ns && !(nb && J)) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(contact->ev_contact, 0, 0, 0, 0));
+  if (nb && J) PetscCall(PetscCalloc2(9 * nb, &kt, nb, &nact));
   /* pairing phase: every slave node to its tool and patch (kept in the node's memo) */
   PetscCall(PetscLogEventBegin(contact->ev_pairing, 0, 0, 0, 0));
   for (PetscInt i = 0; i < contact->ns; i++) {
@@ -631,14 +990,64 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
     if (f)
       for (int k = 0; k < 3; k++) f[contact->mesh->vloff[v] + k] += R[k];
     if (J) {
+      const PetscInt *sg = contact->sgdof + 3 * i;
       if (coo_v) {
         PetscInt m = 0;
         for (int r = 0; r < 3; r++)
           for (int c = 0; c < 3; c++)
-            if (contact->sgdof[3 * i + r] >= 0 && contact->sgdof[3 * i + c] >= 0) coo_v[m++] = K[3 * r + c];
+            if (sg[r] >= 0 && sg[c] >= 0) coo_v[m++] = K[3 * r + c];
         coo_v += m;
-      } else PetscCall(MatSetValues(J, 3, contact->sgdof + 3 * i, 3, contact->sgdof + 3 * i, K, ADD_VALUES));
+      } else PetscCall(MatSetValues(J, 3, sg, 3, sg, K, ADD_VALUES));
+      /* the coupling with the unknowns of every tool the node may pair with (zero but for its tool) */
+      for (PetscInt t = 0; nb && t < nt; t++) {
+        const ToolContact *tc = &contact->tc[t];
+        const PetscBool    mine = contact->cst_t[i].tool == t ? PETSC_TRUE : PETSC_FALSE;
+        PetscScalar        C[9], D[9];
+        PetscInt           td[3];
+        if (tc->block < 0 || !contact->tmask[i * nt + t]) continue;
+        if (mine && contact->cst_t[i].status != CONTACT_OPEN) nact[tc->block]++;
+        for (int r = 0; r < 3; r++) {
+          td[r] = contact->tdof0 + 3 * tc->block + r;
+          for (int c = 0; c < 3; c++) {
+            const PetscBool fr = tc->drive[r] == TOOL_DRIVE_FORCE ? PETSC_TRUE : PETSC_FALSE, fc = tc->drive[c] == TOOL_DRIVE_FORCE ? PETSC_TRUE : PETSC_FALSE;
+            C[3 * r + c] = (mine && fc) ? -K[3 * r + c] : 0; /* node rows, tool columns */
+            D[3 * r + c] = (mine && fr) ? -K[3 * r + c] : 0; /* tool rows, node columns */
+            if (mine && fr && fc) kt[9 * tc->block + 3 * r + c] += K[3 * r + c];
+          }
+        }
+        if (coo_v) {
+          for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+              if (sg[r] >= 0) *coo_v++ = C[3 * r + c];
+          for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+              if (sg[c] >= 0) *coo_v++ = D[3 * r + c];
+        } else {
+          PetscCall(MatSetValues(J, 3, sg, 3, td, C, ADD_VALUES));
+          PetscCall(MatSetValues(J, 3, td, 3, sg, D, ADD_VALUES));
+        }
+      }
     }
+  }
+  if (nb && J) {
+    /* the tool x tool blocks: this rank's sums; on the owner the identity of the directions that
+       are not force-driven and the regularisation of a tool out of contact */
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, nact, (PetscMPIInt)nb, MPIU_INT, MPI_SUM, contact->comm));
+    for (PetscInt t = 0; t < nt; t++) {
+      const ToolContact *tc = &contact->tc[t];
+      PetscScalar       *E;
+      PetscInt           td[3];
+      if (tc->block < 0) continue;
+      E = kt + 9 * tc->block;
+      for (int k = 0; k < 3; k++) {
+        td[k] = contact->tdof0 + 3 * tc->block + k;
+        if (contact->towner) E[4 * k] += tc->drive[k] == TOOL_DRIVE_FORCE ? (nact[tc->block] ? 0 : tc->kreg) : 1;
+      }
+      if (coo_v) {
+        for (int k = 0; k < 9; k++) *coo_v++ = E[k];
+      } else PetscCall(MatSetValues(J, 3, td, 3, td, E, ADD_VALUES));
+    }
+    PetscCall(PetscFree2(kt, nact));
   }
   *nfail_out = nfail;
   PetscCall(PetscLogEventEnd(contact->ev_contact, 0, 0, 0, 0));
@@ -647,20 +1056,142 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
 
 PetscErrorCode ContactGetCOO(Contact contact, PetscCount *n, PetscInt *ci, PetscInt *cj)
 {
-  PetscCount m = 0;
+  PetscCount     m  = 0;
+  const PetscInt nt = contact->ntools;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < contact->ns; i++)
+#define COO_ADD(I, J) \
+  do { \
+    if (ci) { \
+      ci[m] = (I); \
+      cj[m] = (J); \
+    } \
+    m++; \
+  } while (0)
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const PetscInt *sg = contact->sgdof + 3 * i;
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++)
-        if (contact->sgdof[3 * i + r] >= 0 && contact->sgdof[3 * i + c] >= 0) {
-          if (ci) {
-            ci[m] = contact->sgdof[3 * i + r];
-            cj[m] = contact->sgdof[3 * i + c];
-          }
-          m++;
-        }
+        if (sg[r] >= 0 && sg[c] >= 0) COO_ADD(sg[r], sg[c]);
+    for (PetscInt t = 0; contact->nb && t < nt; t++) {
+      const PetscInt b = contact->tc[t].block, td = contact->tdof0 + 3 * b;
+      if (b < 0 || !contact->tmask[i * nt + t]) continue;
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+          if (sg[r] >= 0) COO_ADD(sg[r], td + c);
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+          if (sg[c] >= 0) COO_ADD(td + r, sg[c]);
+    }
+  }
+  for (PetscInt t = 0; contact->nb && t < nt; t++) {
+    const PetscInt b = contact->tc[t].block, td = contact->tdof0 + 3 * b;
+    if (b < 0) continue;
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++) COO_ADD(td + r, td + c);
+  }
+#undef COO_ADD
   *n = m;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactToolResidual(Contact contact, PetscReal lambda, PetscReal *r)
+{
+  const PetscInt nb = contact->nb;
+  PetscReal     *fs, *loc, *all;
+  PetscMPIInt    size;
+
+  PetscFunctionBeginUser;
+  if (!nb) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_size(contact->comm, &size));
+  /* per tool: the force on the body; the nodes in contact, the smallest gap of its paired nodes
+     and the normal there (this rank's, then every rank's) */
+  PetscCall(PetscCalloc3(3 * nb, &fs, 5 * nb, &loc, 5 * nb * size, &all));
+  for (PetscInt b = 0; b < nb; b++) loc[5 * b + 1] = PETSC_MAX_REAL;
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const ContactState *st = &contact->cst_t[i];
+    const PairMemo     *pm = &contact->pmemo[i];
+    if (pm->tool >= 0 && contact->tc[pm->tool].block >= 0 && pm->pr.gap < loc[5 * contact->tc[pm->tool].block + 1]) {
+      PetscReal *l = loc + 5 * contact->tc[pm->tool].block;
+      l[1]         = pm->pr.gap;
+      for (int k = 0; k < 3; k++) l[2 + k] = pm->pr.n[k];
+    }
+    if (st->tool < 0 || st->status == CONTACT_OPEN || contact->tc[st->tool].block < 0) continue;
+    for (int k = 0; k < 3; k++) fs[3 * contact->tc[st->tool].block + k] += st->f[k];
+    loc[5 * contact->tc[st->tool].block] += 1;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fs, (PetscMPIInt)(3 * nb), MPIU_REAL, MPI_SUM, contact->comm));
+  PetscCallMPI(MPI_Allgather(loc, (PetscMPIInt)(5 * nb), MPIU_REAL, all, (PetscMPIInt)(5 * nb), MPIU_REAL, contact->comm));
+  for (PetscInt t = 0; t < contact->ntools; t++) {
+    const ToolContact *tc = &contact->tc[t];
+    const PetscInt     b  = tc->block;
+    double             sh[3], T[3] = {0, 0, 0}, gmin = PETSC_MAX_REAL, n[3] = {0, 0, 0}, nact = 0, tn = 0, tns = 0;
+    if (b < 0) continue;
+    ToolShift(&contact->tools[t], lambda, sh);
+    for (PetscMPIInt p = 0; p < size; p++) { /* the smallest gap (the lowest rank on a tie) */
+      const PetscReal *l = all + 5 * nb * p + 5 * b;
+      nact += l[0];
+      if (l[1] < gmin) {
+        gmin = l[1];
+        for (int k = 0; k < 3; k++) n[k] = l[2 + k];
+      }
+    }
+    for (int k = 0; k < 3; k++)
+      if (tc->drive[k] == TOOL_DRIVE_FORCE) { /* the target along the normal, and its slope from the right */
+        T[k] = ToolTarget(tc, k, lambda);
+        tn += T[k] * n[k];
+        tns += tc->fscale[k] * (tc->famp[k].n ? LoadCurveSlope(&tc->famp[k], lambda) : 1) * n[k];
+      }
+    for (int k = 0; k < 3; k++) {
+      PetscReal f = fs[3 * b + k];
+      /* no node in contact and the target pressing the tool onto the body (or zero and about to,
+         so that the residual is continuous in the load there): the penalty law continued across
+         the gap of the tool's nearest paired node with the regularising stiffness, f = -k_reg g n
+         (zero at first touch, where the contact rows take over). A zero target otherwise: the row
+         is zero, the tool holds its position. */
+      if (nact == 0 && gmin < PETSC_MAX_REAL && (tn > 0 || (tn == 0 && tns > 0))) f = -tc->kreg * gmin * n[k];
+      r[3 * b + k] = tc->drive[k] == TOOL_DRIVE_FORCE ? f - T[k] : tc->d[k] - (sh[k] + tc->hold[k]);
+    }
+  }
+  PetscCall(PetscFree3(fs, loc, all));
+  PetscFunctionReturn(0);
+}
+
+#define CKPT_TOOL 10 /* per tool: committed displacement (3), path length, drive (3), held offset (3) */
+
+PetscInt ContactToolCheckpointWidth(Contact contact) { return CKPT_TOOL * contact->ntools; }
+
+PetscErrorCode ContactToolCheckpointPack(Contact contact, PetscReal *v)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt t = 0; t < contact->ntools; t++) {
+    const ToolContact *tc = &contact->tc[t];
+    PetscReal         *w  = v + CKPT_TOOL * t;
+    for (int k = 0; k < 3; k++) {
+      w[k]     = tc->dc[k];
+      w[4 + k] = (PetscReal)tc->drive[k];
+      w[7 + k] = tc->hold[k];
+    }
+    w[3] = tc->path_c;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactToolCheckpointUnpack(Contact contact, const PetscReal *v)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt t = 0; t < contact->ntools; t++) {
+    ToolContact     *tc = &contact->tc[t];
+    const PetscReal *w  = v + CKPT_TOOL * t;
+    for (int k = 0; k < 3; k++) {
+      const ToolDrive dr = w[4 + k] != 0 ? TOOL_DRIVE_FORCE : TOOL_DRIVE_DISPLACEMENT;
+      PetscCheck(dr == TOOL_DRIVE_DISPLACEMENT || tc->famp[k].n || tc->fscale[k] != 0 || tc->drive[k] == TOOL_DRIVE_FORCE, contact->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint drives tool %s by force along %c, this run has no force for it", contact->tools[t].name, "xyz"[k]);
+      tc->dc[k]    = w[k];
+      tc->drive[k] = dr;
+      tc->hold[k]  = w[7 + k];
+    }
+    tc->path_c = w[3];
+  }
   PetscFunctionReturn(0);
 }
 
@@ -671,6 +1202,15 @@ PetscErrorCode ContactCommit(Contact contact, PetscReal lambda)
 {
   PetscFunctionBeginUser;
   if (contact->ns) PetscCall(PetscArraycpy(contact->cst_c, contact->cst_t, contact->ns));
+  /* the tools' displacements: the solved ones along the force-driven directions */
+  for (PetscInt t = 0; t < contact->ntools; t++) {
+    ToolContact *tc = &contact->tc[t];
+    double       sh[3];
+    if (tc->block < 0) continue;
+    CurShift(contact, t, lambda, sh);
+    tc->path_c += PetscSqrtReal(PetscSqr(sh[0] - tc->dc[0]) + PetscSqr(sh[1] - tc->dc[1]) + PetscSqr(sh[2] - tc->dc[2]));
+    for (int k = 0; k < 3; k++) tc->dc[k] = sh[k];
+  }
   /* the multipliers the next step starts from: the forces of this one (the Uzawa update
      lN <- <lN - K_N g> = t_N, lT <- the returned tT); the normal one only with augmentation */
   for (PetscInt i = 0; i < contact->ns; i++) {
@@ -714,7 +1254,7 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool *converged, PetscReal *
     loc[2]             = PetscMax(loc[2], PetscSqrtReal(r[0] * r[0] + dT * dT));
     loc[3]             = PetscMax(loc[3], PetscSqrtReal(nN * nN + nT[0] * nT[0] + nT[1] * nT[1]));
     if (Pressed(st)) loc[0] = PetscMax(loc[0], -st->gap);
-    if (st->status == CONTACT_STICK && contact->law.mu > 0) loc[1] = PetscMax(loc[1], dT / NodeLaw(contact, i).KT);
+    if (st->status == CONTACT_STICK && nt >= 0 && contact->tc[nt].law.mu > 0) loc[1] = PetscMax(loc[1], dT / NodeLaw(contact, i, nt).KT);
     for (int k = 0; k < 3; k++) {
       const PetscReal d = r[k] - contact->lam_r[3 * i + k];
       dot[2 * (k > 0)] += contact->lam_r[3 * i + k] * d;
@@ -740,7 +1280,7 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool *converged, PetscReal *
     /* back into the admissible set: lN >= 0, |lT| <= mu lN */
     l[0] = PetscMax(l[0], 0);
     {
-      const PetscReal nT = PetscSqrtReal(l[1] * l[1] + l[2] * l[2]), cap = contact->law.mu * l[0];
+      const PetscReal nT = PetscSqrtReal(l[1] * l[1] + l[2] * l[2]), cap = (st->tool >= 0 ? contact->tc[st->tool].law.mu : 0) * l[0];
       if (nT > cap) {
         l[1] = nT > 0 ? l[1] * cap / nT : 0;
         l[2] = nT > 0 ? l[2] * cap / nT : 0;
@@ -825,9 +1365,14 @@ PetscErrorCode ContactGetToolResult(Contact contact, PetscInt t, PetscReal lambd
   PetscCall(PetscMemzero(r, sizeof(*r)));
   r->name = tl->name;
   ToolDirection(tl, r->dir);
-  ToolShift(tl, lambda, r->shift);
+  if (contact->tc[t].block >= 0) { /* the solved displacement of the committed state */
+    CommittedShift(contact, t, r->shift);
+    r->path = contact->tc[t].path_c;
+  } else {
+    ToolShift(tl, lambda, r->shift);
+    r->path = ToolTravel(tl, lambda);
+  }
   r->travel = r->shift[0] * r->dir[0] + r->shift[1] * r->dir[1] + r->shift[2] * r->dir[2];
-  r->path   = ToolTravel(tl, lambda);
   for (PetscInt i = 0; i < contact->ns; i++) {
     const ContactState *st = &contact->cst_c[i];
     if (st->tool != t || st->status == CONTACT_OPEN) continue;
@@ -839,7 +1384,7 @@ PetscErrorCode ContactGetToolResult(Contact contact, PetscInt t, PetscReal lambd
     }
     if (Pressed(st)) {
       loc[10] += 1;
-      if (contact->law.mu > 0) {
+      if (contact->tc[t].law.mu > 0) {
         loc[11] += st->status == CONTACT_STICK;
         loc[12] += st->status == CONTACT_SLIP;
       }
@@ -882,7 +1427,7 @@ PetscErrorCode ContactGetNodeFields(Contact contact, PetscReal *cg, PetscReal *c
     cg[r]                  = PetscIsInfReal(st->gap) ? contact->search : st->gap;
     cn[r]                  = st->tN;
     /* 0 open or touching without force, 1 stick, 2 slip, 3 pressed without friction */
-    cst[r] = !Pressed(st) ? 0 : (contact->law.mu > 0 ? st->status : 3);
+    cst[r] = !Pressed(st) ? 0 : (contact->tc[st->tool].law.mu > 0 ? st->status : 3);
     csl[r] = st->slip;
     for (int k = 0; k < 3; k++) ct[3 * r + k] = st->fT[k];
   }

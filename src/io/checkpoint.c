@@ -185,6 +185,32 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
     if (!write) PetscCall(ContactCheckpointUnpack(problem->contact, cst, ci->lambda, path));
   }
   PetscCall(PetscFree2(own, cst));
+  /* force-driven tools: their unknowns in the last two converged steps and the tools' committed
+     state (drive, held offsets, displacement, path), replicated: written by rank 0, read by all */
+  if (problem->ntu || !write) {
+    PetscInt   ntu = problem->ntu, nw = ContactToolCheckpointWidth(problem->contact);
+    PetscReal *tv;
+    htri_t     has = 1;
+    if (!write) {
+      has = H5Lexists(file, "tool_unknowns", H5P_DEFAULT);
+      PetscCheck((has > 0) == (ntu > 0), pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint %s tool unknowns, this case %s (not the same case)", path, has > 0 ? "has" : "has no", ntu > 0 ? "drives tools by force" : "drives no tool by force");
+    }
+    if (ntu) {
+      PetscCall(PetscMalloc1(2 * ntu + nw, &tv));
+      if (write) {
+        PetscCall(ProblemGetToolValues(problem, problem->Uc, tv));
+        PetscCall(ProblemGetToolValues(problem, problem->Uprev, tv + ntu));
+        PetscCall(ContactToolCheckpointPack(problem->contact, tv + 2 * ntu));
+      }
+      PetscCall(Rows(file, "tool_unknowns", write, 1, 2 * ntu + nw, write ? (pb->rank == 0 ? 1 : 0) : 1, 0, tv, path));
+      if (!write) {
+        PetscCall(ProblemSetToolValues(problem, problem->Uc, tv));
+        PetscCall(ProblemSetToolValues(problem, problem->Uprev, tv + ntu));
+        PetscCall(ContactToolCheckpointUnpack(problem->contact, tv + 2 * ntu));
+      }
+      PetscCall(PetscFree(tv));
+    }
+  }
   PetscFunctionReturn(0);
 }
 

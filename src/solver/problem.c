@@ -12,6 +12,70 @@
 
 #define MAX_EDOF 81 /* element dofs: up to 27 nodes */
 
+PetscErrorCode ProblemGetToolValues(Problem *pb, Vec X, PetscReal *d)
+{
+  PetscFunctionBeginUser;
+  if (!pb->ntu) PetscFunctionReturn(0);
+  if (pb->rank == pb->size - 1) {
+    const PetscScalar *a;
+    PetscInt           n;
+    PetscCall(VecGetLocalSize(X, &n));
+    PetscCall(VecGetArrayRead(X, &a));
+    for (PetscInt k = 0; k < pb->ntu; k++) d[k] = PetscRealPart(a[n - pb->ntu + k]);
+    PetscCall(VecRestoreArrayRead(X, &a));
+  }
+  PetscCallMPI(MPI_Bcast(d, (PetscMPIInt)pb->ntu, MPIU_REAL, pb->size - 1, pb->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemSetToolValues(Problem *pb, Vec X, const PetscReal *d)
+{
+  PetscFunctionBeginUser;
+  if (!pb->ntu) PetscFunctionReturn(0);
+  if (pb->rank == pb->size - 1) {
+    PetscScalar *a;
+    PetscInt     n;
+    PetscCall(VecGetLocalSize(X, &n));
+    PetscCall(VecGetArray(X, &a));
+    for (PetscInt k = 0; k < pb->ntu; k++) a[n - pb->ntu + k] = d[k];
+    PetscCall(VecRestoreArray(X, &a));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The body part of a global vector X as a DM global vector: X itself without tool unknowns, else
+   the view V (its array placed on X's); with the tool values handed to the contact object (read) */
+static PetscErrorCode BodyGet(Problem *pb, Vec X, Vec V, PetscBool read, Vec *B)
+{
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  if (!pb->ntu) {
+    *B = X;
+    PetscFunctionReturn(0);
+  }
+  if (read) {
+    PetscReal d[3 * 64];
+    PetscCheck(pb->ntu <= 3 * 64, pb->comm, PETSC_ERR_SUP, "at most 64 force-driven tools");
+    PetscCall(ProblemGetToolValues(pb, X, d));
+    PetscCall(ContactSetToolUnknowns(pb->contact, d));
+    PetscCall(VecGetArrayRead(X, (const PetscScalar **)&a));
+  } else PetscCall(VecGetArray(X, &a));
+  PetscCall(VecPlaceArray(V, a));
+  *B = V;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BodyRestore(Problem *pb, Vec X, Vec V, PetscBool read)
+{
+  PetscFunctionBeginUser;
+  if (!pb->ntu) PetscFunctionReturn(0);
+  PetscCall(VecResetArray(V));
+  if (read) PetscCall(VecRestoreArrayRead(X, NULL));
+  else PetscCall(VecRestoreArray(X, NULL));
+  PetscFunctionReturn(0);
+}
+
 /* Element loop: local residual into Floc (if residual), Jacobian into J (if J); per-cell info if
    asked. Failures are counted, and reported collectively. */
 static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool residual, Mat J, PetscBool want_info)
@@ -26,7 +90,12 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
   PetscInt             gfail;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGlobalToLocal(m->dm, U, INSERT_VALUES, pb->Uloc));
+  {
+    Vec Ub;
+    PetscCall(BodyGet(pb, U, pb->Ubv, PETSC_TRUE, &Ub));
+    PetscCall(DMGlobalToLocal(m->dm, Ub, INSERT_VALUES, pb->Uloc));
+    PetscCall(BodyRestore(pb, U, pb->Ubv, PETSC_TRUE));
+  }
   PetscCall(VecGetArray(pb->Uloc, (PetscScalar **)&u));
   BCApply(pb->bcs, (PetscScalar *)u, lambda);
   if (residual) {
@@ -114,7 +183,17 @@ PetscErrorCode ProblemFormFunction(SNES snes, Vec U, Vec F, void *ctx)
   PetscCall(Assemble(pb, U, pb->lambda, PETSC_TRUE, NULL, PETSC_FALSE));
   PetscCall(VecZeroEntries(F));
   if (pb->ndomain_err) PetscCall(SNESSetFunctionDomainError(snes));
-  else PetscCall(DMLocalToGlobal(pb->mesh->dm, pb->Floc, ADD_VALUES, F));
+  else {
+    Vec Fb = NULL;
+    PetscCall(BodyGet(pb, F, pb->Fbv, PETSC_FALSE, &Fb));
+    PetscCall(DMLocalToGlobal(pb->mesh->dm, pb->Floc, ADD_VALUES, Fb));
+    PetscCall(BodyRestore(pb, F, pb->Fbv, PETSC_FALSE));
+    if (pb->ntu) { /* the rows of the tool unknowns (contact.h) */
+      PetscReal r[3 * 64];
+      PetscCall(ContactToolResidual(pb->contact, pb->lambda, r));
+      PetscCall(ProblemSetToolValues(pb, F, r));
+    }
+  }
   if (pb->fault_nan_load >= 0 && !pb->fault_done && pb->lambda >= pb->fault_nan_load) {
     /* fault injection for the tests: one NaN, once */
     PetscInt n;
@@ -150,9 +229,12 @@ PetscErrorCode ProblemFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx)
 PetscErrorCode ProblemLocalWithBC(Problem *pb, Vec U, PetscReal lambda)
 {
   PetscScalar *u;
+  Vec          Ub;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGlobalToLocal(pb->mesh->dm, U, INSERT_VALUES, pb->Uloc));
+  PetscCall(BodyGet(pb, U, pb->Ubv, PETSC_TRUE, &Ub));
+  PetscCall(DMGlobalToLocal(pb->mesh->dm, Ub, INSERT_VALUES, pb->Uloc));
+  PetscCall(BodyRestore(pb, U, pb->Ubv, PETSC_TRUE));
   PetscCall(VecGetArray(pb->Uloc, &u));
   BCApply(pb->bcs, u, lambda);
   PetscCall(VecRestoreArray(pb->Uloc, &u));
@@ -214,7 +296,8 @@ static PetscErrorCode SetNearNullSpace(Problem *pb, Mat J)
   for (int i = 0; i < 3; i++) c[i] /= PetscMax(n, 1);
   for (int m = 0; m < 6; m++) {
     PetscScalar *a;
-    PetscCall(DMCreateGlobalVector(msh->dm, &modes[m]));
+    if (pb->ntu) PetscCall(VecDuplicate(pb->U, &modes[m]));
+    else PetscCall(DMCreateGlobalVector(msh->dm, &modes[m]));
     PetscCall(VecGetOwnershipRange(modes[m], &rstart, NULL));
     PetscCall(VecGetArray(modes[m], &a));
     for (PetscInt k = 0; k < msh->nvo; k++) {
@@ -230,6 +313,11 @@ static PetscErrorCode SetNearNullSpace(Problem *pb, Mat J)
       PetscCall(MeshVertexDofs(msh, msh->vloc[k], idx));
       for (PetscInt d = 0; d < 3; d++)
         if (idx[d] >= 0) a[idx[d] - rstart] = v[d];
+    }
+    if (pb->ntu && m < 3 && pb->rank == pb->size - 1) { /* a translation moves the tools too */
+      PetscInt n;
+      PetscCall(VecGetLocalSize(modes[m], &n));
+      for (PetscInt b = 0; b < pb->ntu / 3; b++) a[n - pb->ntu + 3 * b + m] = 1;
     }
     PetscCall(VecRestoreArray(modes[m], &a));
   }
@@ -305,14 +393,66 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   PetscCall(PetscArraycpy(pb->hist_t, pb->hist_c, (size_t)m->nc * pb->nhc));
   PetscCall(PetscCalloc1(m->nc, &pb->einfo));
   PetscCall(DMCreateGlobalVector(m->dm, &pb->U));
+  pb->ntu = ContactNumToolUnknowns(contact);
+  if (pb->ntu) {
+    /* the tool unknowns follow the body's, on the last rank: the body's global numbering stays */
+    PetscInt nbl, N;
+    pb->Ubv = pb->U;
+    PetscCall(VecDuplicate(pb->Ubv, &pb->Fbv));
+    PetscCall(VecGetLocalSize(pb->Ubv, &nbl));
+    PetscCall(VecGetSize(pb->Ubv, &N));
+    PetscCall(VecCreateMPI(pb->comm, nbl + (pb->rank == pb->size - 1 ? pb->ntu : 0), PETSC_DETERMINE, &pb->U));
+    {
+      /* the body's block size (3 when no component is constrained apart from whole vertices) stays:
+         the tools add 3 unknowns each */
+      PetscInt bs, ok;
+      PetscCall(VecGetBlockSize(pb->Ubv, &bs));
+      ok = (bs > 1 && nbl % bs == 0 && 3 % bs == 0) ? 1 : 0;
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPIU_INT, MPI_MIN, pb->comm));
+      pb->tbs = ok ? bs : 1;
+      if (ok) PetscCall(VecSetBlockSize(pb->U, bs));
+    }
+    PetscCall(ContactSetToolDofs(contact, N, pb->rank == pb->size - 1 ? PETSC_TRUE : PETSC_FALSE));
+  }
   PetscCall(VecDuplicate(pb->U, &pb->Uc));
   PetscCall(VecDuplicate(pb->U, &pb->Uprev));
   PetscCall(DMCreateLocalVector(m->dm, &pb->Uloc));
   PetscCall(VecDuplicate(pb->Uloc, &pb->Floc));
 
-  PetscCall(DMCreateMatrix(m->dm, &pb->J));
+  if (!pb->ntu) PetscCall(DMCreateMatrix(m->dm, &pb->J));
+  else {
+    /* the DM's pattern extended by the rows and columns of the tool unknowns: every slave node
+       that may touch a force-driven tool couples with its unknowns (a fixed set) */
+    PetscInt nl;
+    PetscCall(VecGetLocalSize(pb->U, &nl));
+    PetscCall(MatCreate(pb->comm, &pb->J));
+    PetscCall(MatSetSizes(pb->J, nl, nl, PETSC_DETERMINE, PETSC_DETERMINE));
+    PetscCall(MatSetBlockSize(pb->J, pb->tbs));
+    PetscCall(MatSetType(pb->J, MATAIJ));
+    if (!pb->assembly_coo) {
+      const PetscInt     nd = 3 * pb->ek->nen;
+      static PetscScalar zeros[MAX_EDOF * MAX_EDOF];
+      Mat                pre;
+      PetscCount         nct;
+      PetscInt          *ci, *cj;
+      PetscCall(MatCreate(pb->comm, &pre));
+      PetscCall(MatSetSizes(pre, nl, nl, PETSC_DETERMINE, PETSC_DETERMINE));
+      PetscCall(MatSetType(pre, MATPREALLOCATOR));
+      PetscCall(MatSetUp(pre));
+      for (PetscInt e = 0; e < m->nc; e++) PetscCall(MatSetValues(pre, m->cndof[e], m->cgdof + nd * e, m->cndof[e], m->cgdof + nd * e, zeros, INSERT_VALUES));
+      PetscCall(ContactGetCOO(contact, &nct, NULL, NULL));
+      PetscCall(PetscMalloc2(nct + 1, &ci, nct + 1, &cj));
+      PetscCall(ContactGetCOO(contact, &nct, ci, cj));
+      for (PetscCount k = 0; k < nct; k++) PetscCall(MatSetValues(pre, 1, &ci[k], 1, &cj[k], zeros, INSERT_VALUES));
+      PetscCall(PetscFree2(ci, cj));
+      PetscCall(MatAssemblyBegin(pre, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(pre, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatPreallocatorPreallocate(pre, PETSC_TRUE, pb->J));
+      PetscCall(MatDestroy(&pre));
+    }
+  }
   PetscCall(SetNearNullSpace(pb, pb->J));
-  PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  if (!(pb->ntu && pb->assembly_coo)) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE)); /* (not before the preallocation of an extended matrix) */
   if (pb->assembly_coo) {
     /* coordinate assembly: the element blocks' (i, j) once, then the contact blocks; each
        Jacobian then only fills values */
@@ -337,6 +477,7 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
     }
     PetscCall(ContactGetCOO(contact, &nct, ci + ncoo, cj + ncoo));
     PetscCall(MatSetPreallocationCOO(pb->J, ncoo + nct, ci, cj));
+    if (pb->ntu) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
     PetscCall(PetscFree2(ci, cj));
     PetscCall(PetscCalloc1(ncoo + nct, &pb->coo_v));
   }
@@ -370,6 +511,8 @@ PetscErrorCode ProblemDestroy(Problem *pb)
   PetscCall(VecDestroy(&pb->U));
   PetscCall(VecDestroy(&pb->Uc));
   PetscCall(VecDestroy(&pb->Uprev));
+  PetscCall(VecDestroy(&pb->Ubv));
+  PetscCall(VecDestroy(&pb->Fbv));
   PetscCall(VecDestroy(&pb->Uloc));
   PetscCall(VecDestroy(&pb->Floc));
   PetscCall(PetscFree2(pb->hist_c, pb->hist_t));

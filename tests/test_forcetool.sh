@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# Tools driven by force (-tool_<name>_force_x|y|z, -tool_<name>_force_amplitude) and per-tool
+# contact settings (-tool_<name>_contact_set, _penalty_normal, _penalty_tangential, _friction),
+# on cases/forcetool_holder.opts: a sheet between a fixed die and a blank holder that presses with
+# a force while the sheet is pulled sideways (stick, then slip, under both tools).
+set -u
+cd "$(dirname "$0")/.."
+. tests/lib.sh
+OUT=$(test_out forcetool)
+CASE="-options_file cases/forcetool_holder.opts"
+AMP="0,0,0.2,1"
+
+# 1. the exact Jacobian of the coupled system (body and the holder's unknown) in stick and in slip,
+#    both assembly paths, 1 and 2 ranks
+atrito 1 jac $CASE -output_interval 0 -snes_test_jacobian &&
+  pycheck snes_test_jacobian "$OUT/jac.log" 10 1e-5 "force-driven holder (MatSetValues)" --contact "$OUT/jac"
+atrito 1 jaccoo $CASE -output_interval 0 -snes_test_jacobian -assembly_coo &&
+  pycheck snes_test_jacobian "$OUT/jaccoo.log" 10 1e-5 "force-driven holder (-assembly_coo)" --contact "$OUT/jaccoo"
+atrito 2 jac2 $CASE -output_interval 0 -snes_test_jacobian -assembly_coo &&
+  pycheck snes_test_jacobian "$OUT/jac2.log" 10 1e-5 "force-driven holder (np=2, -assembly_coo)" --contact "$OUT/jac2"
+
+# 2. the converged holder force equals the target at every step, to the Newton residual; the
+#    per-tool friction (die 0.1, holder 0.3, global 0.2) holds at every slipping node of each
+atrito 1 run1 $CASE &&
+  pycheck forcetool target "$OUT/run1" holder -1000 "$AMP" &&
+  pycheck forcetool friction "$OUT/run1" 0:0.1 0.25:0.3
+
+# 3. 1 and 2 ranks (both assembly paths) agree to 1e-8
+atrito 2 run2 $CASE &&
+  for f in history contact; do $PY tests/compare_csv.py "$OUT/run1/$f.csv" "$OUT/run2/$f.csv" --rtol 1e-8 --skip 'residual_*' --int-tol newton_its=1 --label "force-driven holder, np=1 and np=2: $f.csv"; done
+atrito 2 run2coo $CASE -assembly_coo &&
+  for f in history contact; do $PY tests/compare_csv.py "$OUT/run1/$f.csv" "$OUT/run2coo/$f.csv" --rtol 1e-8 --skip 'residual_*' --int-tol newton_its=1 --label "force-driven holder, np=1 and np=2 -assembly_coo: $f.csv"; done
+
+# 4. a run stopped after 7 steps and restarted from its checkpoint (step 6) repeats the
+#    uninterrupted one (the holder's unknowns are in the checkpoint)
+OUTD="$OUT/stop"
+$MPI 1 $A $CASE -checkpoint_interval 2 -load_max_steps 7 -output_interval 0 -output_dir "$OUTD" >"$OUT/stop1.log" 2>&1 </dev/null
+$MPI 1 $A $CASE -checkpoint_interval 2 -output_interval 0 -output_dir "$OUTD" -restart "$OUTD/checkpoint.h5" >"$OUT/stop2.log" 2>&1 </dev/null || not_ok "restart of the force-driven run failed"
+grep -q "restart from .*: step 6," "$OUT/stop2.log" && ok "force-driven holder: restart from the checkpoint of step 6" || not_ok "force-driven holder: restart did not start from step 6"
+for f in history contact; do $PY tests/compare_csv.py "$OUT/run1/$f.csv" "$OUTD/$f.csv" --rtol 1e-10 --label "force-driven holder, stopped and restarted (np=1): $f.csv"; done
+$MPI 2 $A $CASE -checkpoint_interval 2 -output_interval 0 -output_dir "$OUT/stop2r" -load_max_steps 5 >/dev/null 2>&1 </dev/null
+$MPI 1 $A $CASE -checkpoint_interval 2 -output_interval 0 -output_dir "$OUT/stop2r" -restart "$OUT/stop2r/checkpoint.h5" >"$OUT/stop2r.log" 2>&1 </dev/null || not_ok "restart at another rank count failed"
+for f in history contact; do $PY tests/compare_csv.py "$OUT/run1/$f.csv" "$OUT/stop2r/$f.csv" --rtol 1e-8 --skip 'residual_*' --int-tol newton_its=1 --label "force-driven holder, written at np=2 and restarted at np=1: $f.csv"; done
+
+# 5. loss of contact: a holder that starts 0.05 above the sheet closes the gap under its force
+#    (the penalty law continued across the gap while no node touches it), a force ramped to zero
+#    releases the sheet, and a holder with a zero force and no contact holds its position (the
+#    sheet's base held so that the body alone is not singular)
+atrito 1 gap $CASE -output_interval 0 -tool_holder_patch0_origin 0,0,0.3 &&
+  pycheck forcetool target "$OUT/gap" holder -1000 "$AMP" &&
+  { dz=$(awk -F, '$3=="holder"{d=$14} END{print d}' "$OUT/gap/contact.csv"); awk -v d="$dz" 'BEGIN{exit !(d < -0.05)}' &&
+    ok "holder starting 0.05 above the sheet closed the gap (final dz $dz), $(grep -c retrying "$OUT/gap.log") cuts" || not_ok "holder did not close its gap (dz $dz)"; }
+REL="0,0,0.2,1,0.5,0,1,0"
+atrito 1 release $CASE -output_interval 0 -tool_holder_force_amplitude "$REL" -bc_names sym,pull,base -bc_base_set zmin -bc_base_components z &&
+  pycheck forcetool target "$OUT/release" holder -1000 "$REL" &&
+  pycheck forcetool release "$OUT/release" holder 0.5
+atrito 1 zero $CASE -output_interval 0 -tool_holder_force_z 0 -tool_holder_patch0_origin 0,0,0.26 -bc_names sym,pull,base -bc_base_set zmin -bc_base_components z &&
+  { dz=$(awk -F, '$3=="holder"{d=$14} END{print d}' "$OUT/zero/contact.csv"); awk -v d="$dz" 'BEGIN{exit !(d == 0)}' &&
+    ok "holder with a zero force and no contact holds its position (dz $dz)" || not_ok "holder with a zero force moved (dz $dz)"; }
+
+# 6. per-tool settings change only that tool's contact: the die's results do not depend on the
+#    holder's friction, and existing cases (global settings only) are unchanged (test_reference.sh)
+atrito 1 mu5 $CASE -output_interval 0 -tool_holder_friction 0.5 &&
+  $PY - "$OUT/run1/contact.csv" "$OUT/mu5/contact.csv" <<'PY'
+import csv, sys
+a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:3])
+die = lambda r: [(x["step"], x["fz"], x["fx"]) for x in r if x["tool"] == "die"]
+hold = lambda r: [x["fx"] for x in r if x["tool"] == "holder"]
+# the die's normal force is the holder's (equilibrium): it stays; the die's friction stays 0.1 fz in slip
+da, db = die(a), die(b)
+ok = len(da) == len(db) and all(abs(float(p[1]) - float(q[1])) <= 1e-8 * abs(float(p[1])) + 1e-9 for p, q in zip(da, db)) and hold(a) != hold(b)
+print(("ok" if ok else "not ok") + " - -tool_holder_friction 0.5 changes the holder's friction force only: the die's normal force is the same at every step")
+PY
+
+# a node in both tools' sets pairs with the nearer tool and takes that tool's law: with both sets
+# on both tools the results are those of the run with one face per tool
+atrito 1 both $CASE -output_interval 0 -tool_die_contact_set zmin,zmax -tool_holder_contact_set zmax,zmin &&
+  for f in history contact; do $PY tests/compare_csv.py "$OUT/run1/$f.csv" "$OUT/both/$f.csv" --rtol 1e-10 --skip 'residual_*' --int-tol newton_its=1 --label "nodes in both tools' sets: $f.csv as with one set per tool"; done
+
+# 7. bad input: one-line errors naming the option
+bad() { # bad EXPECT NP ARGS...
+  local expect=$1 np=$2; shift 2
+  local err="$OUT/bad$np.$RANDOM.err"
+  timeout 120 $MPI "$np" $A "$@" -output_dir "$OUT/bad" </dev/null >/dev/null 2>"$err"; local rc=$?
+  local n; n=$(grep -c '^atrito: error' "$err")
+  if [ $rc -ne 0 ] && [ $rc -lt 124 ] && [ "$n" -eq 1 ] && grep -qF -- "$expect" "$err"; then ok "bad input (np=$np): $(grep '^atrito: error' "$err" | cut -c1-150)"
+  else not_ok "bad input (np=$np): expected '$expect', exit $rc, $n error lines:"; head -n 5 "$err" | indent; fi
+}
+bad "-tool_holder_force_amplitude" 1 $CASE -tool_holder_force_amplitude 0,0,0.5,nan
+bad "-tool_holder_force_amplitude" 2 $CASE -tool_holder_force_amplitude 0,0,0.5
+bad "-tool_holder_force_z: the tool's -tool_holder_motion or -tool_holder_path moves it along z too" 1 $CASE -tool_holder_motion 0,0,-0.01
+bad "-tool_holder_force_z: the tool's -tool_holder_motion or -tool_holder_path moves it along z too" 2 $CASE -tool_holder_path 0,0,0,0,1,0,0,-0.01
+bad "-tool_holder_force_z nan. must be a finite number" 1 $CASE -tool_holder_force_z nan
+bad "-tool_die_contact_set: the mesh has no set named 'nowhere'" 2 $CASE -tool_die_contact_set nowhere
+bad "-tool_holder_friction -1. must be >= 0" 1 $CASE -tool_holder_friction -1
+bad "-tool_holder_penalty_normal 'soft' is neither a number nor auto" 1 $CASE -tool_holder_penalty_normal soft
