@@ -54,6 +54,13 @@ PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c);
    then on (plus any later change of the tool's prescribed displacement ToolShift). After
    ContactSetUp only a tool that owns unknowns can be switched to force. */
 PetscErrorCode ContactSetToolDrive(Contact c, PetscInt tool, PetscInt dir, ToolDrive mode, const LoadCurve *force);
+/* Force-controlled release (a stage's -stage_<s>_release): from the committed time t0 to t1 the
+   tool is driven by force in x, y and z, the target going linearly from the force it exerts now
+   (committed) to zero; it needs unknowns (ContactReserveToolUnknowns before the setup). The release
+   is part of the tools' checkpoint. */
+PetscErrorCode ContactReleaseTool(Contact c, PetscInt tool, PetscReal t0, PetscReal t1);
+/* per direction: driven by force, and the target force at time t (0 where not driven) */
+PetscErrorCode ContactGetToolTarget(Contact c, PetscInt tool, PetscReal t, PetscBool driven[3], PetscReal F[3]);
 /* before ContactSetUp: give the tool its unknowns although no direction is force-driven yet */
 PetscErrorCode ContactReserveToolUnknowns(Contact c, PetscInt tool);
 /* the first breakpoint after t of the force curves (amplitudes) of the force-driven directions

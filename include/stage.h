@@ -1,6 +1,7 @@
 /* Stages of the process: -stage_names a,b,... follow each other in process time, each with its
    duration, its first and largest increment, the tools present and the Dirichlet conditions
-   active in it (-stage_<s>_duration, _steps, _dt_max, _tools, _bcs). Without -stage_names the
+   active in it, the tools it releases by force (-stage_<s>_duration, _steps, _dt_max, _tools,
+   _bcs, _release). Without -stage_names the
    process is one stage, "load", of duration 1: the process time is the load parameter of the
    -load_* options. Options only; the stepper enters the stages (stepper.c). */
 #ifndef ATRITO_STAGE_H
@@ -19,6 +20,9 @@ typedef struct {
   PetscInt  ntools, nbcs;          /* -1: all (the default); else how many are listed        */
   char      tools[STAGE_MAX_TOOLS][64], bcs[ATRITO_MAX_BC][64]; /* as listed ("none": empty) */
   PetscBool tool_on[STAGE_MAX_TOOLS], bc_on[ATRITO_MAX_BC];      /* after StagesSetUp        */
+  PetscInt  nrelease;              /* -stage_<s>_release: tools released by force (<= 0: none) */
+  char      release[STAGE_MAX_TOOLS][64];
+  PetscBool tool_release[STAGE_MAX_TOOLS];                        /* after StagesSetUp        */
 } Stage;
 
 typedef struct {
@@ -33,7 +37,9 @@ typedef struct {
 PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_steps, PetscReal dt_max, PetscReal dt_min);
 /* the names of -stage_<s>_tools and _bcs against the tools and conditions of the case (one-line
    errors naming the option); marks the conditions that some stage leaves inactive (not section
-   constraints: bc.h) and gives the total time to the conditions and tools */
+   constraints: bc.h) and gives the total time to the conditions and tools; the tools a stage
+   releases get their unknowns (before the contact set-up); a tool removed while a force still
+   drives it is refused */
 PetscErrorCode StagesSetUp(Stages *sg, BCs *bcs, Contact contact);
 /* defined in src/contact/contact.c: read access to tool t, and a tool present or absent in the
    current stage (an absent tool pairs no node; its nodes' states become "no contact") */

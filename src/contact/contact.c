@@ -43,6 +43,9 @@ typedef struct {
   PetscReal  dc[3];     /* its committed displacement (tools with unknowns)                    */
   PetscReal  path_c;    /* path length of the committed displacements (tools with unknowns)    */
   PetscReal  kreg;      /* regularising stiffness: the sum of the penalties K_N of its nodes    */
+  PetscBool  release;   /* force-controlled release (ContactReleaseTool): in x, y, z the target  */
+  PetscReal  rel_t[2];  /* goes linearly from rel_f, the force at rel_t[0], to 0 at rel_t[1]      */
+  PetscReal  rel_f[3];
 } ToolContact;
 
 typedef struct {
@@ -332,6 +335,52 @@ PetscErrorCode ContactSetToolDrive(Contact c, PetscInt tool, PetscInt dir, ToolD
     ToolShift(&c->tools[tool], c->lambda_c, s);
     if (tc->block >= 0) tc->hold[dir] = tc->dc[dir] - s[dir];
     tc->drive[dir] = TOOL_DRIVE_DISPLACEMENT;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* the three force curves of a release: from rel_f at rel_t[0] linearly to 0 at rel_t[1] */
+static PetscErrorCode ReleaseDrive(Contact c, PetscInt tool)
+{
+  ToolContact *tc = &c->tc[tool];
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < 3; d++) {
+    LoadCurve       cv;
+    const PetscReal v[2] = {tc->rel_f[d], 0};
+    PetscCall(LoadCurveCreate(c->comm, "release", 2, tc->rel_t, v, &cv));
+    PetscCall(ContactSetToolDrive(c, tool, d, TOOL_DRIVE_FORCE, &cv));
+    PetscCall(LoadCurveDestroy(&cv));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactReleaseTool(Contact c, PetscInt tool, PetscReal t0, PetscReal t1)
+{
+  ToolContact      *tc;
+  ContactToolResult r;
+
+  PetscFunctionBeginUser;
+  PetscCheck(tool >= 0 && tool < c->ntools, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactReleaseTool: tool %" PetscInt_FMT " of %" PetscInt_FMT, tool, c->ntools);
+  PetscCheck(t1 > t0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactReleaseTool: tool %s released from time %g to %g", c->tools[tool].name, (double)t0, (double)t1);
+  tc = &c->tc[tool];
+  PetscCheck(tc->block >= 0, c->comm, PETSC_ERR_ORDER, "tool %s is released by force but has no unknowns (reserve them before the setup: ContactReserveToolUnknowns)", c->tools[tool].name);
+  PetscCall(ContactGetToolResult(c, tool, t0, &r)); /* the committed force the tool exerts */
+  tc->release  = PETSC_TRUE;
+  tc->rel_t[0] = t0;
+  tc->rel_t[1] = t1;
+  for (int d = 0; d < 3; d++) tc->rel_f[d] = r.f[d];
+  PetscCall(ReleaseDrive(c, tool));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactGetToolTarget(Contact c, PetscInt tool, PetscReal t, PetscBool driven[3], PetscReal F[3])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(tool >= 0 && tool < c->ntools, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactGetToolTarget: tool %" PetscInt_FMT " of %" PetscInt_FMT, tool, c->ntools);
+  for (int d = 0; d < 3; d++) {
+    driven[d] = c->tc[tool].drive[d] == TOOL_DRIVE_FORCE ? PETSC_TRUE : PETSC_FALSE;
+    F[d]      = driven[d] ? ToolTarget(&c->tc[tool], d, t) : 0;
   }
   PetscFunctionReturn(0);
 }
@@ -1148,7 +1197,9 @@ PetscErrorCode ContactToolResidual(Contact contact, PetscReal lambda, PetscReal 
          so that the residual is continuous in the load there): the penalty law continued across
          the gap of the tool's nearest paired node with the regularising stiffness, f = -k_reg g n
          (zero at first touch, where the contact rows take over). A zero target otherwise: the row
-         is zero, the tool holds its position. */
+         is zero, the tool holds its position (out of contact and without a force it has no
+         equilibrium position of its own: where it stops depends on the iterate at which its last
+         node left contact). */
       if (nact == 0 && gmin < PETSC_MAX_REAL && (tn > 0 || (tn == 0 && tns > 0))) f = -tc->kreg * gmin * n[k];
       r[3 * b + k] = tc->drive[k] == TOOL_DRIVE_FORCE ? f - T[k] : tc->d[k] - (sh[k] + tc->hold[k]);
     }
@@ -1157,7 +1208,7 @@ PetscErrorCode ContactToolResidual(Contact contact, PetscReal lambda, PetscReal 
   PetscFunctionReturn(0);
 }
 
-#define CKPT_TOOL 10 /* per tool: committed displacement (3), path length, drive (3), held offset (3) */
+#define CKPT_TOOL 16 /* per tool: committed displacement (3), path length, drive (3), held offset (3), release (flag, its two times, its three forces) */
 
 PetscInt ContactToolCheckpointWidth(Contact contact) { return CKPT_TOOL * contact->ntools; }
 
@@ -1172,7 +1223,11 @@ PetscErrorCode ContactToolCheckpointPack(Contact contact, PetscReal *v)
       w[4 + k] = (PetscReal)tc->drive[k];
       w[7 + k] = tc->hold[k];
     }
-    w[3] = tc->path_c;
+    w[3]  = tc->path_c;
+    w[10] = tc->release ? 1 : 0;
+    w[11] = tc->rel_t[0];
+    w[12] = tc->rel_t[1];
+    for (int k = 0; k < 3; k++) w[13 + k] = tc->rel_f[k];
   }
   PetscFunctionReturn(0);
 }
@@ -1183,6 +1238,13 @@ PetscErrorCode ContactToolCheckpointUnpack(Contact contact, const PetscReal *v)
   for (PetscInt t = 0; t < contact->ntools; t++) {
     ToolContact     *tc = &contact->tc[t];
     const PetscReal *w  = v + CKPT_TOOL * t;
+    if (w[10] != 0) { /* a release under way: its force curves again */
+      tc->release  = PETSC_TRUE;
+      tc->rel_t[0] = w[11];
+      tc->rel_t[1] = w[12];
+      for (int k = 0; k < 3; k++) tc->rel_f[k] = w[13 + k];
+      PetscCall(ReleaseDrive(contact, t));
+    }
     for (int k = 0; k < 3; k++) {
       const ToolDrive dr = w[4 + k] != 0 ? TOOL_DRIVE_FORCE : TOOL_DRIVE_DISPLACEMENT;
       PetscCheck(dr == TOOL_DRIVE_DISPLACEMENT || tc->famp[k].n || tc->fscale[k] != 0 || tc->drive[k] == TOOL_DRIVE_FORCE, contact->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint drives tool %s by force along %c, this run has no force for it", contact->tools[t].name, "xyz"[k]);
@@ -1490,12 +1552,14 @@ PetscErrorCode ContactCheckpointUnpack(Contact contact, const PetscReal *rows, P
   PetscFunctionReturn(0);
 }
 
-/* the node sets of the slave nodes (for the partition that balances them, MeshSetContactSets) */
+/* the node sets of the slave nodes, the union over the tools (for the partition that balances them, MeshSetContactSets) */
 PetscErrorCode ContactGetSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN])
 {
+  PetscInt na;
   PetscFunctionBeginUser;
-  *n    = c->ntools ? c->nset : 0;
-  *sets = c->set;
+  PetscCall(ContactGetAreaSets(c, &na, sets)); /* builds the union of the tools' sets */
+  *n    = c->ntools ? c->nuset : 0;
+  *sets = c->uset;
   PetscFunctionReturn(0);
 }
 

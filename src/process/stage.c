@@ -59,6 +59,7 @@ PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_ste
     sg->s[0].dt_max = dt_max;
     sg->s[0].dt_min = dt_min;
     sg->s[0].ntools = sg->s[0].nbcs = -1;
+    sg->s[0].nrelease = -1;
     sg->T           = 1;
     PetscFunctionReturn(0);
   }
@@ -91,6 +92,10 @@ PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_ste
     if (!ierr) {
       PetscCall(PetscSNPrintf(opt, sizeof(opt), "-stage_%s_bcs", s->name));
       ierr = NameList(PetscOptionsObject, "-bcs", "Dirichlet conditions active in the stage (default: all; none: no condition)", opt, ATRITO_MAX_BC, s->bcs, &s->nbcs);
+    }
+    if (!ierr) {
+      PetscCall(PetscSNPrintf(opt, sizeof(opt), "-stage_%s_release", s->name));
+      ierr = NameList(PetscOptionsObject, "-release", "Tools released by force in the stage: driven by force in x, y, z, the target going linearly from the force at the stage's start to zero at its end (default: none)", opt, STAGE_MAX_TOOLS, s->release, &s->nrelease);
     }
     PetscOptionsEnd();
     PetscCall(ierr);
@@ -128,6 +133,19 @@ PetscErrorCode StagesSetUp(Stages *sg, BCs *bcs, Contact contact)
       PetscCheck(found >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_tools: unknown tool '%s' (not in -tool_names)", s->name, s->tools[j]);
       s->tool_on[found] = PETSC_TRUE;
     }
+    for (PetscInt t = 0; t < nt; t++) s->tool_release[t] = PETSC_FALSE;
+    for (PetscInt j = 0; j < s->nrelease; j++) {
+      PetscInt found = -1;
+      for (PetscInt t = 0; t < nt; t++) {
+        const Tool *tl = NULL;
+        PetscCall(ContactGetTool(contact, t, &tl));
+        if (!strcmp(tl->name, s->release[j])) found = t;
+      }
+      PetscCheck(found >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_release: unknown tool '%s' (not in -tool_names)", s->name, s->release[j]);
+      PetscCheck(s->tool_on[found], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_release: tool '%s' is not present in the stage (-stage_%s_tools)", s->name, s->release[j], s->name);
+      s->tool_release[found] = PETSC_TRUE;
+      PetscCall(ContactReserveToolUnknowns(contact, found));
+    }
     for (PetscInt b = 0; b < bcs->n; b++) s->bc_on[b] = s->nbcs < 0 ? PETSC_TRUE : PETSC_FALSE;
     for (PetscInt j = 0; j < s->nbcs; j++) {
       PetscInt found = -1;
@@ -137,6 +155,19 @@ PetscErrorCode StagesSetUp(Stages *sg, BCs *bcs, Contact contact)
       s->bc_on[found] = PETSC_TRUE;
     }
   }
+  /* a tool removed at a stage's start while a force of its options still drives it (not released
+     in the stage before): refused, the force would vanish at once */
+  for (PetscInt k = 1; k < sg->n; k++)
+    for (PetscInt t = 0; t < nt; t++) {
+      PetscBool   driven[3];
+      PetscReal   F[3];
+      const Tool *tl = NULL;
+      if (!sg->s[k - 1].tool_on[t] || sg->s[k].tool_on[t] || sg->s[k - 1].tool_release[t]) continue;
+      PetscCall(ContactGetTool(contact, t, &tl));
+      PetscCall(ContactGetToolTarget(contact, t, sg->s[k].t0, driven, F));
+      for (int d = 0; d < 3; d++)
+        PetscCheck(!driven[d] || F[d] == 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_tools: tool %s is removed at time %g while a force of %g along %c still drives it (-tool_%s_force_%c); release it in the stage before (-stage_%s_release %s) or bring its -tool_%s_force_amplitude to 0 there", sg->s[k].name, tl->name, (double)sg->s[k].t0, (double)F[d], "xyz"[d], tl->name, "xyz"[d], sg->s[k - 1].name, tl->name, tl->name);
+    }
   for (PetscInt b = 0; b < bcs->n; b++) {
     bcs->bc[b].always = PETSC_TRUE;
     for (PetscInt k = 0; k < sg->n; k++)

@@ -87,6 +87,7 @@ PetscErrorCode StepperSetUp(Stepper *st, BCs *bcs, Contact contact)
     PetscCall(ContactGetTool(contact, t, &tl));
     if (tl->amp.n > 0) amp = PETSC_TRUE;
   }
+  if (ContactNextKink(contact, -PETSC_MAX_REAL) < PETSC_INFINITY) amp = PETSC_TRUE; /* force curves */
   if (!st->kinks_set) st->kinks = (st->stages.given || amp) ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
@@ -102,7 +103,7 @@ static PetscReal NextKink(const Stepper *st, PetscReal t)
     if (ContactGetTool(st->contact, i, &tl)) continue;
     k = PetscMin(k, (PetscReal)ToolNextKink(tl, t));
   }
-  /* force-driven tools: k = PetscMin(k, ContactNextKink(st->contact, t)); */
+  k = PetscMin(k, ContactNextKink(st->contact, t)); /* force-driven tools */
   return k;
 }
 
@@ -166,6 +167,11 @@ static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool
         PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WARNING: stage %s removes tool %s while it carries a force of %.6e (fx %.6e, fy %.6e, fz %.6e; %" PetscInt_FMT " nodes pressed): released at once in the stage's first step (a stage in which the tool retracts releases it gradually)\n", s->name, tl->name, sqrt(r.f[0] * r.f[0] + r.f[1] * r.f[1] + r.f[2] * r.f[2]), r.f[0], r.f[1], r.f[2], r.active));
     }
     PetscCall(ContactSetToolPresent(st->contact, i, s->tool_on[i]));
+    /* a release starts from the force the tool exerts now (a restart finds it in the checkpoint) */
+    if (!restart && s->tool_release[i]) {
+      PetscCall(ContactReleaseTool(st->contact, i, s->t0, s->t1));
+      if (announce) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stage %s: tool %s released by force from time %g to %g\n", s->name, tl->name, (double)s->t0, (double)s->t1));
+    }
   }
   for (PetscInt b = 0; b < st->bcs->n; b++) {
     BC *bc = &st->bcs->bc[b];
