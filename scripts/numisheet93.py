@@ -1,0 +1,358 @@
+#!/usr/bin/env python3
+"""The NUMISHEET'93 benchmarks (2D draw bending, square cup): runs, post-processing, doc/forming.md.
+
+usage: numisheet93.py [--quick] [--variant final|gap] [--max-steps N] [--skip-runs] [--selftest]
+Runs the cases cases/numisheet93_{uchannel,cup}_{coarse,fine}[ _gap].opts (--quick: the coarse meshes
+only), one at a time on one rank, then post-processes out/<case>/:
+  U-channel: punch force (full blank, both sides) against the stroke from contact.csv; the
+    springback angles theta1, theta2 and the wall's radius rho from the final node positions
+    (fields.h5), measured on the mid-surface of the section y = 0 (doc/forming.md, "Measurement");
+  square cup: the draw-in DX, DY, DD of the blank's edge at 15 and 40 mm of punch stroke from the
+    positions of its edge nodes (interpolated in the stroke between the output steps).
+Writes the figure doc/figures/numisheet93_uchannel_force.png and the results section of
+doc/forming.md (between the numisheet93 markers) with the steps, Newton iterations and run times.
+--variant gap runs the variants with the holder at a fixed gap (no stages, no springback);
+--max-steps N stops every run after N converged steps (partial runs: the post-processing reports
+what the run reached); --skip-runs only re-reads out/; --selftest checks the measurements on
+synthetic sections and blanks of known geometry and exits."""
+import argparse
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.abspath(os.path.join(HERE, ".."))
+DOC = os.path.join(ROOT, "doc", "forming.md")
+FIG = os.path.join(ROOT, "doc", "figures")
+env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
+BEGIN, END = "<!-- numisheet93: results begin -->", "<!-- numisheet93: results end -->"
+CUP_HALF = 75.0
+
+
+# ---------------------------------------------------------------- runs
+def run(case, max_steps):
+    os.makedirs(os.path.join(ROOT, "out"), exist_ok=True)
+    log = os.path.join(ROOT, "out", case + ".log")
+    cmd = [os.path.join(ROOT, "bin", "atrito"), "-options_file", os.path.join(ROOT, "cases", case + ".opts")]
+    if max_steps:
+        cmd += ["-load_max_steps", str(max_steps)]
+    t0 = time.time()
+    with open(log, "w") as f:
+        r = subprocess.run(cmd, cwd=ROOT, env=env, stdout=f, stderr=subprocess.STDOUT)
+    print(f"{case}: exit {r.returncode}, {time.time() - t0:.1f} s", file=sys.stderr)
+    with open(log, "a") as f:
+        f.write("# wall time %.2f s, exit %d\n" % (time.time() - t0, r.returncode))
+
+
+def run_info(case):
+    """steps, Newton iterations, cuts, wall time, status, from the log."""
+    path = os.path.join(ROOT, "out", case + ".log")
+    if not os.path.exists(path):
+        return None
+    log = open(path).read()
+    m = re.search(r"done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([0-9.]+) s", log)
+    wall = re.search(r"# wall time ([0-9.]+) s, exit (\d+)", log)
+    steps = re.findall(r"^step\s+(\d+)\s+time\s+(\S+)\s+its\s+(\d+)", log, re.M)
+    mesh = re.search(r"mesh: (\d+) vertices, (\d+) hexahedra", log)
+    err = re.search(r"^atrito: error: (.*)$", log, re.M)
+    info = dict(steps=len(steps), its=sum(int(s[2]) for s in steps), cuts=log.count("retrying with increment"),
+                wall=float(wall.group(1)) if wall else float("nan"), time=float(steps[-1][1]) if steps else 0.0,
+                hexa=int(mesh.group(2)) if mesh else 0, status="completed" if m else (err.group(1) if err else "?"))
+    if m:
+        info.update(steps=int(m.group(1)), its=int(m.group(2)), cuts=int(m.group(3)))
+    return info
+
+
+# ---------------------------------------------------------------- fields
+def read_fields(case):
+    import h5py
+    f = h5py.File(os.path.join(ROOT, "out", case, "fields.h5"), "r")
+    X = f["mesh/coordinates"][:]
+    steps = sorted(f["steps"].keys())
+    U = {int(k): f["steps"][k]["displacement"][:] for k in steps}
+    return X, U
+
+
+def contact_rows(case, tool):
+    path = os.path.join(ROOT, "out", case, "contact.csv")
+    if not os.path.exists(path):
+        return []
+    return [r for r in csv.DictReader(open(path)) if r["tool"] == tool]
+
+
+# ---------------------------------------------------------------- U-channel measurement
+def section(X, u, t):
+    """mid-surface of the section y = 0: (x, z) ordered by the reference x."""
+    on = np.isclose(X[:, 1], X[:, 1].min())
+    x = X + u
+    bot = on & np.isclose(X[:, 2], 0.0)
+    top = on & np.isclose(X[:, 2], t)
+    ib, it = np.where(bot)[0], np.where(top)[0]
+    ib, it = ib[np.argsort(X[ib, 0])], it[np.argsort(X[it, 0])]
+    mid = 0.5 * (x[ib] + x[it])
+    return mid[:, [0, 2]]
+
+
+def fit_line(P):
+    """unit direction of the total least-squares line through P (rows), oriented along P's order."""
+    c = P.mean(axis=0)
+    w, v = np.linalg.eigh(np.cov((P - c).T))
+    d = v[:, -1]
+    return d if np.dot(P[-1] - P[0], d) >= 0 else -d
+
+
+def fit_circle(P):
+    """least-squares circle (algebraic fit): radius."""
+    A = np.c_[2 * P, np.ones(len(P))]
+    b = (P ** 2).sum(axis=1)
+    cx, cz, k = np.linalg.lstsq(A, b, rcond=None)[0]
+    return math.sqrt(k + cx * cx + cz * cz)
+
+
+def angle(a, b):
+    return math.degrees(math.acos(max(-1.0, min(1.0, float(np.dot(a, b))))))
+
+
+def uchannel_measure(P, margin=8.0):
+    """theta1, theta2 (degrees) and rho (mm) of a section P (points from the symmetry plane outwards).
+
+    The corners are where the tangent's angle to the web crosses 45 degrees (first upwards: the
+    punch's corner, last downwards: the die's); web, wall and flange are the points farther than
+    `margin` (arc length) from the corners. theta1: between the web (towards the symmetry plane)
+    and the line of the wall's lower third (upwards); theta2: between the line of the wall's upper
+    third (upwards) and the flange (outwards); rho: the radius of the circle fitted to the wall
+    (infinite for a straight wall). A channel with straight walls opened by an angle a has
+    theta1 = 90 + a and theta2 = 90 - a."""
+    d = np.diff(P, axis=0)
+    s = np.r_[0.0, np.cumsum(np.hypot(d[:, 0], d[:, 1]))]
+    web_dir = fit_line(P[s < min(10.0, 0.3 * s[-1])])
+    phi = np.degrees(np.arctan2(d[:, 0] * web_dir[1] - d[:, 1] * web_dir[0], d @ web_dir))
+    phi = -phi if np.nanmax(np.abs(phi)) == np.nanmax(-phi) else phi
+    up = np.where(phi > 45)[0]
+    if len(up) == 0:
+        return None
+    s1, s2 = s[up[0]], s[up[-1] + 1]
+    web = P[s <= s1 - margin]
+    wall = P[(s >= s1 + margin) & (s <= s2 - margin)]
+    flange = P[s >= s2 + margin]
+    if len(web) < 2 or len(wall) < 6 or len(flange) < 2:
+        return None
+    n3 = max(2, len(wall) // 3)
+    w_lo, w_hi = fit_line(wall[:n3]), fit_line(wall[-n3:])
+    th1 = angle(-fit_line(web), w_lo)
+    th2 = angle(w_hi, fit_line(flange))
+    c = wall.mean(axis=0)
+    dev = np.abs((wall - c) @ np.array([-w_lo[1], w_lo[0]])).max()
+    rho = fit_circle(wall) if dev > 1e-6 * (s2 - s1) else float("inf")
+    return dict(theta1=th1, theta2=th2, rho=rho, s_corners=(s1, s2))
+
+
+def uchannel_post(case, t=0.78):
+    res = dict(case=case, info=run_info(case))
+    rows = contact_rows(case, "punch")
+    res["stroke"] = np.array([abs(float(r["travel"])) for r in rows])
+    res["force"] = np.array([abs(float(r["force_full"])) for r in rows]) / 1000.0
+    try:
+        X, U = read_fields(case)
+    except (OSError, KeyError, ImportError):
+        return res
+    last = max(U)
+    res["last_step"] = last
+    res["shape"] = uchannel_measure(section(X, U[last], t))
+    return res
+
+
+# ---------------------------------------------------------------- square cup measurement
+def drawin(X, u, t):
+    """DX, DY, DD: draw-in of the mid-thickness edge points (75,0), (0,75), (75,75) of the quarter blank."""
+    x = X + u
+    out = {}
+    for name, (px, py) in (("DX", (CUP_HALF, 0.0)), ("DY", (0.0, CUP_HALF)), ("DD", (CUP_HALF, CUP_HALF))):
+        sel = np.isclose(X[:, 0], px) & np.isclose(X[:, 1], py)
+        m = x[sel].mean(axis=0)
+        if name == "DX":
+            out[name] = CUP_HALF - m[0]
+        elif name == "DY":
+            out[name] = CUP_HALF - m[1]
+        else:
+            out[name] = CUP_HALF * math.sqrt(2) - (m[0] + m[1]) / math.sqrt(2)
+    return out
+
+
+def cup_post(case, t=0.78):
+    res = dict(case=case, info=run_info(case), at={})
+    rows = contact_rows(case, "punch")
+    stroke = {int(r["step"]): abs(float(r["travel"])) for r in rows}
+    res["stroke_max"] = max(stroke.values()) if stroke else 0.0
+    try:
+        X, U = read_fields(case)
+    except (OSError, KeyError, ImportError):
+        return res
+    steps = sorted(k for k in U if k in stroke or k == 0)
+    h = [0.0 if k == 0 else stroke[k] for k in steps]
+    D = [drawin(X, U[k], t) for k in steps]
+    for target in (15.0, 40.0):
+        for a in range(len(steps) - 1):
+            if h[a] <= target <= h[a + 1] and h[a + 1] > h[a]:
+                w = (target - h[a]) / (h[a + 1] - h[a])
+                res["at"][target] = {k: (1 - w) * D[a][k] + w * D[a + 1][k] for k in D[a]}
+    res["last"] = (h[-1], D[-1]) if steps else None
+    return res
+
+
+# ---------------------------------------------------------------- self-test on known geometry
+def synthetic_section(th1, th2, rho, depth=60.0, rp=5.0, rd=5.0, web=30.0, flange=80.0, h=0.25):
+    """a U section: web (x <= web), punch corner arc rp, wall an arc of radius rho between the
+    tangent directions of theta1 and of theta2, die corner arc rd, flange; points every h."""
+    pts = [np.array([0.0, -depth])]
+    direc = 0.0                                  # tangent angle from +x
+    def go(length, curv):
+        nonlocal direc
+        n = max(1, int(round(length / h)))
+        for _ in range(n):
+            direc_mid = direc + 0.5 * curv * length / n
+            pts.append(pts[-1] + length / n * np.array([math.cos(direc_mid), math.sin(direc_mid)]))
+            direc += curv * length / n
+    go(web, 0.0)
+    a1 = math.radians(180.0 - th1)               # the wall's lower direction (from +x)
+    go(rp * a1, 1.0 / rp)
+    a2 = math.radians(th2)                       # the wall's upper direction, from +x (the flange)
+    turn = a2 - a1                               # the wall turns by this much
+    L = depth * 0.6
+    go(L, turn / L if abs(turn) > 1e-12 else 0.0)
+    go(rd * a2, -1.0 / rd)
+    go(flange, 0.0)
+    return np.array(pts), (abs(L / turn) if abs(turn) > 1e-12 else float("inf"))
+
+
+def selftest():
+    ok = True
+    for th1, th2 in ((90.0, 90.0), (105.0, 75.0), (100.0, 85.0), (112.0, 62.0)):
+        P, rho = synthetic_section(th1, th2, None)
+        m = uchannel_measure(P, margin=6.0)
+        # straight walls: exact; a curved wall: the lines fitted to its thirds are chords of the arc
+        # (and the margins cut its ends), so their angles lie within a third of the wall's turn of
+        # the end tangents
+        turn = abs(th1 + th2 - 180.0)
+        tol = turn / 3 + 0.05
+        good = abs(m["theta1"] - th1) <= tol and abs(m["theta2"] - th2) <= tol and \
+            (math.isinf(rho) or abs(m["rho"] - rho) / rho < 0.05)
+        ok &= good
+        print("U section theta1 %.1f theta2 %.1f rho %.1f: measured %.2f %.2f %.1f (tolerance %.1f deg) %s"
+              % (th1, th2, rho, m["theta1"], m["theta2"], m["rho"], tol, "ok" if good else "FAIL"))
+    # a cup blank translated inwards by known draw-ins
+    g = np.linspace(0, CUP_HALF, 4)
+    X = np.array([[a, b, z] for z in (0, 0.78) for b in g for a in g])
+    u = np.zeros_like(X)
+    u[:, 0] -= 5.0 * X[:, 0] / CUP_HALF
+    u[:, 1] -= 3.0 * X[:, 1] / CUP_HALF
+    d = drawin(X, u, 0.78)
+    want = dict(DX=5.0, DY=3.0, DD=(5.0 + 3.0) / math.sqrt(2))
+    good = all(abs(d[k] - want[k]) < 1e-9 for k in want)
+    ok &= good
+    print("cup draw-in: %s (expected %s) %s" % ({k: round(v, 6) for k, v in d.items()},
+                                                  {k: round(v, 6) for k, v in want.items()}, "ok" if good else "FAIL"))
+    return ok
+
+
+# ---------------------------------------------------------------- doc
+def fmt(v, f="%.1f"):
+    return "–" if v is None or (isinstance(v, float) and not math.isfinite(v)) else f % v
+
+
+def write_doc(U, C, variant, max_steps):
+    L = [BEGIN, "",
+         "Written by `scripts/numisheet93.py` (variant `%s`%s) on %s." %
+         (variant, ", at most %d steps per run" % max_steps if max_steps else "", time.strftime("%Y-%m-%d")), ""]
+    L += ["| case | hexahedra | steps | Newton iterations | cuts | wall time (s) | s per step | reached (process time) | status |",
+          "|---|---|---|---|---|---|---|---|---|"]
+    for r in U + C:
+        i = r["info"]
+        if i is None:
+            L.append("| %s | – | – | – | – | – | – | – | not run |" % r["case"])
+            continue
+        L.append("| %s | %d | %d | %d | %d | %.1f | %s | %.4g | %s |" %
+                 (r["case"], i["hexa"], i["steps"], i["its"], i["cuts"], i["wall"],
+                  fmt(i["wall"] / i["steps"] if i["steps"] else None, "%.2f"), i["time"], i["status"]))
+    L += ["", "**U-channel** (mild steel, 2.45 kN; angles in degrees, rho in mm; experiment and "
+          "simulations of the benchmark in the tables above):", "",
+          "| case | punch stroke reached (mm) | largest punch force (kN) | theta1 | theta2 | rho | measured on |",
+          "|---|---|---|---|---|---|---|"]
+    for r in U:
+        sh = r.get("shape")
+        st = r["stroke"].max() if len(r.get("stroke", [])) else None
+        fmax = r["force"].max() if len(r.get("force", [])) else None
+        on = ("step %d (%s)" % (r["last_step"], "after springback" if variant == "final" else "under load: no springback")
+              if "last_step" in r else "no fields")
+        L.append("| %s | %s | %s | %s | %s | %s | %s |" %
+                 (r["case"], fmt(st), fmt(fmax, "%.2f"), fmt(sh and sh["theta1"]), fmt(sh and sh["theta2"]),
+                  fmt(sh and sh["rho"], "%.0f"), on if sh else on + ", section not yet U-shaped"))
+    if any(len(r.get("stroke", [])) for r in U):
+        L += ["", "![punch force against stroke](figures/numisheet93_uchannel_force.png)"]
+    L += ["", "**Square cup** (mild steel, 19.6 kN; draw-in in mm):", "",
+          "| case | stroke reached (mm) | DX 15 | DY 15 | DD 15 | DX 40 | DY 40 | DD 40 | at the last step |",
+          "|---|---|---|---|---|---|---|---|---|"]
+    for r in C:
+        a15, a40 = r["at"].get(15.0, {}), r["at"].get(40.0, {})
+        last = r.get("last")
+        L.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" %
+                 (r["case"], fmt(r.get("stroke_max")), fmt(a15.get("DX"), "%.2f"), fmt(a15.get("DY"), "%.2f"),
+                  fmt(a15.get("DD"), "%.2f"), fmt(a40.get("DX"), "%.2f"), fmt(a40.get("DY"), "%.2f"),
+                  fmt(a40.get("DD"), "%.2f"),
+                  ("stroke %.2f: DX %.3f, DY %.3f, DD %.3f" % (last[0], last[1]["DX"], last[1]["DY"], last[1]["DD"]))
+                  if last else "–"))
+    L += ["", END]
+    text = open(DOC).read()
+    a, b = text.index(BEGIN), text.index(END) + len(END)
+    open(DOC, "w").write(text[:a] + "\n".join(L) + text[b:])
+
+
+def plot_force(U):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for r in U:
+        if len(r.get("stroke", [])):
+            ax.plot(r["stroke"], r["force"], label=r["case"])
+    ax.set_xlabel("punch stroke (mm)")
+    ax.set_ylabel("punch force, full blank (kN)")
+    ax.set_title("NUMISHEET'93 2D draw bending, mild steel, 2.45 kN")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    os.makedirs(FIG, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(os.path.join(FIG, "numisheet93_uchannel_force.png"), dpi=120)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true", help="the coarse meshes only")
+    ap.add_argument("--variant", choices=("final", "gap"), default="final")
+    ap.add_argument("--max-steps", type=int, default=0)
+    ap.add_argument("--skip-runs", action="store_true")
+    ap.add_argument("--selftest", action="store_true")
+    a = ap.parse_args()
+    if a.selftest:
+        sys.exit(0 if selftest() else 1)
+    levels = ["coarse"] if a.quick else ["coarse", "fine"]
+    suffix = "" if a.variant == "final" else "_gap"
+    ucases = ["numisheet93_uchannel_%s%s" % (lv, suffix) for lv in levels]
+    ccases = ["numisheet93_cup_%s%s" % (lv, suffix) for lv in levels]
+    if not a.skip_runs:
+        for c in ucases + ccases:
+            run(c, a.max_steps)
+    U = [uchannel_post(c) for c in ucases]
+    C = [cup_post(c) for c in ccases]
+    plot_force(U)
+    write_doc(U, C, a.variant, a.max_steps)
+
+
+if __name__ == "__main__":
+    main()
