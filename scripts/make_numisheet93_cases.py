@@ -32,9 +32,10 @@ CUP = dict(t=0.78, half=75.0, punch_half=35.0, punch_corner=10.0, punch_r=8.0, d
 # Contact: penalties per unit area, soft (the strip's bending stiffness is tiny: with K_N of the order of
 # E A / h per node the flat punch and the zero initial gaps make the contact status of the web's nodes
 # cycle from one Newton iteration to the next), and the augmented Lagrangian to hold the penetration
-# below 0.01 mm (1.3 % of the thickness); doc/forming.md.
+# below 0.01 mm (1.3 % of the thickness), its multipliers to 20 % (with 1 %, the default, the U-channel's
+# updates stall near 8 mm of stroke); doc/forming.md.
 CONTACT = ["-contact_penalty_per_area", "-contact_penalty_normal 100", "-contact_penalty_tangential 10",
-           "-contact_augmented", "-contact_augmented_tol 0.01"]
+           "-contact_augmented", "-contact_augmented_tol 0.01", "-contact_augmented_multiplier_tol 0.2"]
 MESHES = {"uchannel": {"coarse": 140, "fine": 350}, "cup": {"coarse": 30, "fine": 60}}
 
 
