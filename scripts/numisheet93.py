@@ -261,6 +261,139 @@ def selftest():
     return ok
 
 
+
+# ---------------------------------------------------------------- tool geometry (sections)
+def read_tool(path):
+    """the patches of a .tool file: a list of dicts of their keys (without the patch<j>_ prefix)."""
+    kv = {}
+    for line in open(path):
+        line = line.split("#")[0].strip()
+        if line:
+            k, v = line.split(None, 1)
+            kv[k] = v.strip()
+    out = []
+    for j in range(int(kv["patches"])):
+        pre = "patch%d_" % j
+        out.append({k[len(pre):]: v for k, v in kv.items() if k.startswith(pre)})
+    return out
+
+
+def _vec(s):
+    return np.array([float(x) for x in s.split(",")])
+
+
+def _frame(p):
+    a = _vec(p["axis"]); a /= np.linalg.norm(a)
+    e = _vec(p["ref"]); e -= np.dot(e, a) * a; e /= np.linalg.norm(e)
+    return a, e, np.cross(a, e)
+
+
+def _curve(kind, pts, s):
+    v = _vec(pts)
+    if kind == "line":
+        a, b = v[:3], v[3:6]
+        return a[None, :] + s[:, None] * (b - a)[None, :]
+    a, b, c = v[:3], v[3:6], v[6:9]
+    ra, rb = a - c, b - c
+    r = np.linalg.norm(ra)
+    w = math.acos(max(-1.0, min(1.0, np.dot(ra, rb) / (r * np.linalg.norm(rb)))))
+    u1 = ra / r
+    u2 = rb - np.dot(rb, u1) * u1
+    u2 /= np.linalg.norm(u2)
+    return c[None, :] + r * (np.cos(w * s)[:, None] * u1[None, :] + np.sin(w * s)[:, None] * u2[None, :])
+
+
+def sample_patch(p, n=121):
+    """points x(xi, eta) of a patch on an n x n grid of [0,1]^2 (plane, cylinder, torus, coons)."""
+    t = np.linspace(0.0, 1.0, n)
+    XI, ETA = np.meshgrid(t, t, indexing="ij")
+    typ = p["type"]
+    if typ == "plane":
+        o, e1 = _vec(p["origin"]), _vec(p["e1"]); e1 /= np.linalg.norm(e1)
+        e2 = _vec(p["e2"]); e2 -= np.dot(e2, e1) * e1; e2 /= np.linalg.norm(e2)
+        u0, u1, v0, v1 = _vec(p["range"])
+        U, V = u0 + XI * (u1 - u0), v0 + ETA * (v1 - v0)
+        return o + U[..., None] * e1 + V[..., None] * e2
+    if typ in ("cylinder", "torus"):
+        a, e, f = _frame(p)
+        c = _vec(p["center"])
+        r0, r1, q0, q1 = _vec(p["range"])
+        phi = np.radians(r0 + XI * (r1 - r0))
+        w = np.cos(phi)[..., None] * e + np.sin(phi)[..., None] * f
+        if typ == "cylinder":
+            z = q0 + ETA * (q1 - q0)
+            return c + float(p["radius"]) * w + z[..., None] * a
+        psi = np.radians(q0 + ETA * (q1 - q0))
+        R, r = float(p["major"]), float(p["minor"])
+        return c + (R + r * np.cos(psi))[..., None] * w + (r * np.sin(psi))[..., None] * a
+    if typ == "coons":
+        C0 = _curve(p["bottom_type"], p["bottom_points"], t)
+        C1 = _curve(p["top_type"], p["top_points"], t)
+        D0 = _curve(p["left_type"], p["left_points"], t)
+        D1 = _curve(p["right_type"], p["right_points"], t)
+        P00, P10, P01, P11 = C0[0], C0[-1], C1[0], C1[-1]
+        xi, eta = XI[..., None], ETA[..., None]
+        return ((1 - eta) * C0[:, None, :] + eta * C1[:, None, :] + (1 - xi) * D0[None, :, :] + xi * D1[None, :, :]
+                - ((1 - xi) * (1 - eta) * P00 + xi * (1 - eta) * P10 + (1 - xi) * eta * P01 + xi * eta * P11))
+    raise ValueError("patch type %s" % typ)
+
+
+def tool_section(path, select, coord, shift=(0.0, 0.0, 0.0)):
+    """points of a tool near a plane: select(points) -> mask; coord(points) -> (abscissa, z)."""
+    out = []
+    for p in read_tool(path):
+        P = sample_patch(p).reshape(-1, 3) + np.asarray(shift)
+        m = select(P)
+        if m.any():
+            out.append(coord(P[m]))
+    return np.vstack(out) if out else np.zeros((0, 2))
+
+
+def plot_sections(U, C):
+    """the tools' sections at their last position with the blank's section: U-channel at y = 0; square
+    cup at y = 0 (the DX side) and along the diagonal."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axs = plt.subplots(1, 3, figsize=(15, 4.2))
+    T = os.path.join(ROOT, "cases", "tools")
+    jobs = [(axs[0], U[0] if U else None, "uchannel", "U-channel, section y = 0",
+             lambda P: np.abs(P[:, 1]) < 0.3, lambda P: P[:, [0, 2]]),
+            (axs[1], C[0] if C else None, "cup", "square cup, section y = 0",
+             lambda P: np.abs(P[:, 1]) < 0.3, lambda P: P[:, [0, 2]]),
+            (axs[2], C[0] if C else None, "cup", "square cup, diagonal section",
+             lambda P: np.abs(P[:, 0] - P[:, 1]) < 0.3, lambda P: np.c_[(P[:, 0] + P[:, 1]) / math.sqrt(2), P[:, 2]])]
+    colours = dict(punch="tab:red", die="tab:blue", holder="tab:green")
+    for ax, res, bench, title, sel, coord in jobs:
+        dz = {}
+        if res is not None:
+            for tool in colours:
+                rows = contact_rows(res["case"], tool)
+                dz[tool] = float(rows[-1]["dz"]) if rows else 0.0
+        for tool, col in colours.items():
+            S = tool_section(os.path.join(T, "numisheet93_%s_%s.tool" % (bench, tool)), sel, coord,
+                             (0.0, 0.0, dz.get(tool, 0.0)))
+            ax.plot(S[:, 0], S[:, 1], ".", ms=1, color=col, label="%s (dz %.1f)" % (tool, dz.get(tool, 0.0)))
+        if res is not None:
+            try:
+                X, Ud = read_fields(res["case"])
+                x = X + Ud[max(Ud)]
+                m = sel(X) & (np.isclose(X[:, 2], 0.0) | np.isclose(X[:, 2], X[:, 2].max()))
+                B = coord(x[m])
+                ax.plot(B[:, 0], B[:, 1], "k.", ms=2, label="blank, step %d" % max(Ud))
+            except (OSError, KeyError, ImportError):
+                pass
+        ax.set_title(title, fontsize=10)
+        ax.set_aspect("equal")
+        ax.set_xlim(-5, 120 if bench == "cup" else 180)
+        ax.set_ylim(-75, 25)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="lower right", markerscale=6)
+    fig.tight_layout()
+    os.makedirs(FIG, exist_ok=True)
+    fig.savefig(os.path.join(FIG, "numisheet93_sections.png"), dpi=110)
+
+
 # ---------------------------------------------------------------- doc
 def fmt(v, f="%.1f"):
     return "–" if v is None or (isinstance(v, float) and not math.isfinite(v)) else f % v
@@ -295,6 +428,9 @@ def write_doc(U, C, variant, max_steps):
                   fmt(sh and sh["rho"], "%.0f"), on if sh else on + ", section not yet U-shaped"))
     if any(len(r.get("stroke", [])) for r in U):
         L += ["", "![punch force against stroke](figures/numisheet93_uchannel_force.png)"]
+    L += ["", "Sections of the tools at their last position and of the blank at its last output step "
+          "(`plot_sections`, sampled from the tool files):", "",
+          "![sections](figures/numisheet93_sections.png)"]
     L += ["", "**Square cup** (mild steel, 19.6 kN; draw-in in mm):", "",
           "| case | stroke reached (mm) | DX 15 | DY 15 | DD 15 | DX 40 | DY 40 | DD 40 | at the last step |",
           "|---|---|---|---|---|---|---|---|---|"]
@@ -351,6 +487,7 @@ def main():
     U = [uchannel_post(c) for c in ucases]
     C = [cup_post(c) for c in ccases]
     plot_force(U)
+    plot_sections(U, C)
     write_doc(U, C, a.variant, a.max_steps)
 
 
