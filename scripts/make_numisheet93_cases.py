@@ -257,6 +257,8 @@ def uchannel_cases(level, h):
                common + [
                    "-bc_names symx,sides,pin",
                    "-bc_symx_components x", "-bc_sides_components y", "-bc_pin_components z",
+                   # where the punch left the web's bottom face, whenever the condition is active
+                   "-bc_pin_values %g" % -U["stroke"], "-bc_pin_amplitude 0,1,3,1",
                    "-tool_punch_contact_set top", "-tool_die_contact_set bottom", "-tool_holder_contact_set top",
                    "-tool_punch_friction %g" % U["mu"], "-tool_die_friction %g" % U["mu"],
                    "-tool_holder_friction %g" % U["mu"],
