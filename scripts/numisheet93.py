@@ -158,6 +158,8 @@ def uchannel_post(case, t=0.78):
     rows = contact_rows(case, "punch")
     res["stroke"] = np.array([abs(float(r["travel"])) for r in rows])
     res["force"] = np.array([abs(float(r["force_full"])) for r in rows]) / 1000.0
+    hold = contact_rows(case, "holder")
+    res["holder"] = np.array([abs(float(r["force_full"])) for r in hold]) / 1000.0
     try:
         X, U = read_fields(case)
     except (OSError, KeyError, ImportError):
@@ -190,6 +192,8 @@ def cup_post(case, t=0.78):
     rows = contact_rows(case, "punch")
     stroke = {int(r["step"]): abs(float(r["travel"])) for r in rows}
     res["stroke_max"] = max(stroke.values()) if stroke else 0.0
+    hold = contact_rows(case, "holder")
+    res["holder"] = np.array([abs(float(r["force_full"])) for r in hold]) / 1000.0
     try:
         X, U = read_fields(case)
     except (OSError, KeyError, ImportError):
@@ -399,6 +403,11 @@ def fmt(v, f="%.1f"):
     return "–" if v is None or (isinstance(v, float) and not math.isfinite(v)) else f % v
 
 
+def holder_range(r):
+    h = r.get("holder", [])
+    return "%.2f (%.2f–%.2f)" % (h.mean(), h.min(), h.max()) if len(h) else "–"
+
+
 def write_doc(U, C, variant, max_steps):
     L = [BEGIN, "",
          "Written by `scripts/numisheet93.py` (variant `%s`%s) on %s." %
@@ -415,16 +424,16 @@ def write_doc(U, C, variant, max_steps):
                   fmt(i["wall"] / i["steps"] if i["steps"] else None, "%.2f"), i["time"], i["status"]))
     L += ["", "**U-channel** (mild steel, 2.45 kN; angles in degrees, rho in mm; experiment and "
           "simulations of the benchmark in the tables above):", "",
-          "| case | punch stroke reached (mm) | largest punch force (kN) | theta1 | theta2 | rho | measured on |",
-          "|---|---|---|---|---|---|---|"]
+          "| case | punch stroke reached (mm) | largest punch force (kN) | holder force, mean and range (kN) | theta1 | theta2 | rho | measured on |",
+          "|---|---|---|---|---|---|---|---|"]
     for r in U:
         sh = r.get("shape")
         st = r["stroke"].max() if len(r.get("stroke", [])) else None
         fmax = r["force"].max() if len(r.get("force", [])) else None
         on = ("step %d (%s)" % (r["last_step"], "after springback" if variant == "final" else "under load: no springback")
               if "last_step" in r else "no fields")
-        L.append("| %s | %s | %s | %s | %s | %s | %s |" %
-                 (r["case"], fmt(st), fmt(fmax, "%.2f"), fmt(sh and sh["theta1"]), fmt(sh and sh["theta2"]),
+        L.append("| %s | %s | %s | %s | %s | %s | %s | %s |" %
+                 (r["case"], fmt(st), fmt(fmax, "%.2f"), holder_range(r), fmt(sh and sh["theta1"]), fmt(sh and sh["theta2"]),
                   fmt(sh and sh["rho"], "%.0f"), on if sh else on + ", section not yet U-shaped"))
     if any(len(r.get("stroke", [])) for r in U):
         L += ["", "![punch force against stroke](figures/numisheet93_uchannel_force.png)"]
@@ -432,13 +441,13 @@ def write_doc(U, C, variant, max_steps):
           "(`plot_sections`, sampled from the tool files):", "",
           "![sections](figures/numisheet93_sections.png)"]
     L += ["", "**Square cup** (mild steel, 19.6 kN; draw-in in mm):", "",
-          "| case | stroke reached (mm) | DX 15 | DY 15 | DD 15 | DX 40 | DY 40 | DD 40 | at the last step |",
-          "|---|---|---|---|---|---|---|---|---|"]
+          "| case | stroke reached (mm) | holder force, mean and range (kN) | DX 15 | DY 15 | DD 15 | DX 40 | DY 40 | DD 40 | at the last step |",
+          "|---|---|---|---|---|---|---|---|---|---|"]
     for r in C:
         a15, a40 = r["at"].get(15.0, {}), r["at"].get(40.0, {})
         last = r.get("last")
-        L.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" %
-                 (r["case"], fmt(r.get("stroke_max")), fmt(a15.get("DX"), "%.2f"), fmt(a15.get("DY"), "%.2f"),
+        L.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" %
+                 (r["case"], fmt(r.get("stroke_max")), holder_range(r), fmt(a15.get("DX"), "%.2f"), fmt(a15.get("DY"), "%.2f"),
                   fmt(a15.get("DD"), "%.2f"), fmt(a40.get("DX"), "%.2f"), fmt(a40.get("DY"), "%.2f"),
                   fmt(a40.get("DD"), "%.2f"),
                   ("stroke %.2f: DX %.3f, DY %.3f, DD %.3f" % (last[0], last[1]["DX"], last[1]["DY"], last[1]["DD"]))
