@@ -29,13 +29,20 @@ U = dict(t=0.78, half_length=175.0, width=35.0, punch_half=35.0, punch_r=5.0, di
          die_r=5.0, stroke=70.0, bhf=2450.0, mu=0.144)
 CUP = dict(t=0.78, half=75.0, punch_half=35.0, punch_corner=10.0, punch_r=8.0, die_half=37.0,
            die_corner=12.0, die_r=8.0, stroke=40.0, bhf=19600.0, mu=0.144)
-# Contact: penalties per unit area, soft (the strip's bending stiffness is tiny: with K_N of the order of
-# E A / h per node the flat punch and the zero initial gaps make the contact status of the web's nodes
-# cycle from one Newton iteration to the next), and the augmented Lagrangian to hold the penetration
-# below 0.01 mm (1.3 % of the thickness), its multipliers to 20 % (with 1 %, the default, the U-channel's
-# updates stall near 8 mm of stroke); doc/forming.md.
-CONTACT = ["-contact_penalty_per_area", "-contact_penalty_normal 100", "-contact_penalty_tangential 10",
-           "-contact_augmented", "-contact_augmented_tol 0.01", "-contact_augmented_multiplier_tol 0.2"]
+# Contact: penalties per unit area and the augmented Lagrangian holding the penetration below 0.01 mm
+# (1.3 % of the thickness), its multipliers to 20 % (with 1 %, the default, the U-channel's updates
+# stall near 8 mm of stroke). The U-channel needs a soft penalty, 100 N/mm^3: with the strip's tiny
+# bending stiffness a stiffer one makes the contact status of the web's nodes on the flat punch cycle
+# from one Newton iteration to the next; the cup runs with 1000 N/mm^3. The search distance covers
+# the whole tools: with the default (5 % of the largest tool box) a node over the die's cavity that is
+# too far from its shoulder and walls is paired with the edge of the die's face, whose plane then
+# acts as if it extended over the cavity. doc/forming.md.
+def contact(kn):
+    return ["-contact_penalty_per_area", "-contact_penalty_normal %g" % kn, "-contact_penalty_tangential %g" % (kn / 10),
+            "-contact_augmented", "-contact_augmented_tol 0.01", "-contact_augmented_multiplier_tol 0.2",
+            "-contact_search_distance 300"]
+
+
 MESHES = {"uchannel": {"coarse": 140, "fine": 350}, "cup": {"coarse": 30, "fine": 60}}
 
 
@@ -168,16 +175,14 @@ def cup_tools():
     rf = rc - rp                   # plan corner radius of the flat head
     # punch (quarter): flat head z = t, straight profile cylinders, corner blend, walls; normals outwards
     p = ToolFile("NUMISHEET'93 square cup: punch (quarter, x, y >= 0), %g x %g, plan corner radius %g,\n"
-                 "profile radius %g, head on the sheet's top face z = t at load 0; the corner blend (a torus\n"
-                 "of major radius %g < minor %g) is a Coons patch of its four boundary arcs;\n"
+                 "profile radius %g, head on the sheet's top face z = t at load 0 (one square plane); the corner\n"
+                 "blend (a torus of major radius %g < minor %g) is a Coons patch of its four boundary arcs;\n"
                  "written by scripts/make_numisheet93_cases.py" % (2 * a, 2 * a, rc, rp, rf, rp))
-    p.plane([S, S, t], [0, 1, 0], [1, 0, 0], [0, c - S, 0, c - S])                      # -z
-    p.plane([c, S, t], [0, 1, 0], [1, 0, 0], [0, c - S, 0, rf])                          # strip c..f in x
-    p.plane([S, c, t], [0, 1, 0], [1, 0, 0], [0, rf, 0, c - S])                          # strip c..f in y
-    p.coons([("line", [c, c, t], [c, c, t]),                                             # collapsed at the centre
-             ("arc", [f, c, t], [c, f, t], [c, c, t]),
-             ("line", [c, c, t], [f, c, t]),
-             ("line", [c, c, t], [c, f, t])])                                            # -z
+    # the flat head as one square plane up to the profile's start (x, y <= f): beyond the head's plan
+    # corner radius rf it overreaches the corner blend by at most rp - sqrt(rp^2 - (sqrt(2) rf - rf)^2)
+    # (0.04 mm at the square's corner); a quarter disc as a Coons patch with a side collapsed into its
+    # centre gave wrong gaps to the nodes below that centre
+    p.plane([S, S, t], [0, 1, 0], [1, 0, 0], [0, f - S, 0, f - S])                      # -z
     p.cylinder([f, 0, t + rp], [0, -1, 0], [0, 0, -1], rp, [0, 90, -c, -S])              # side x = a
     p.cylinder([0, f, t + rp], [1, 0, 0], [0, 0, -1], rp, [0, 90, S, c])                 # side y = a
     p.coons([("arc", [f, c, t], [c, f, t], [c, c, t]),
@@ -245,7 +250,7 @@ def uchannel_cases(level, h):
         "-tool_punch_file cases/tools/numisheet93_uchannel_punch.tool",
         "-tool_die_file cases/tools/numisheet93_uchannel_die.tool",
         "-tool_holder_file cases/tools/numisheet93_uchannel_holder.tool",
-    ] + CONTACT
+    ] + contact(100)
     head = ("NUMISHEET'93 2D draw bending (U-channel), mild steel, blank holder force %g kN, %s mesh:\n"
             "half model (x >= 0) of a strip %g wide (one element, plane strain: y fixed on both sides),\n"
             "%d x 1 x 1 hexahedra (hex8_eas), t = %g; tools from cases/tools/numisheet93_uchannel_*.tool;\n"
@@ -302,7 +307,7 @@ def cup_cases(level):
         "-tool_punch_file cases/tools/numisheet93_cup_punch.tool",
         "-tool_die_file cases/tools/numisheet93_cup_die.tool",
         "-tool_holder_file cases/tools/numisheet93_cup_holder.tool",
-    ] + CONTACT
+    ] + contact(1000)
     head = ("NUMISHEET'93 square cup deep drawing, mild steel, blank holder force %g kN, %s mesh:\n"
             "quarter model (x, y >= 0; x the rolling direction), blank 150 x 150 x %g (quarter 75 x 75),\n"
             "%d x %d x 1 hexahedra (hex8_eas); punch stroke %g (draw-in read at 15 and 40);\n"
