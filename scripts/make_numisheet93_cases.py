@@ -180,8 +180,7 @@ def cup_tools():
                  "written by scripts/make_numisheet93_cases.py" % (2 * a, 2 * a, rc, rp, rf, rp))
     # the flat head as one square plane up to the profile's start (x, y <= f): beyond the head's plan
     # corner radius rf it overreaches the corner blend by at most rp - sqrt(rp^2 - (sqrt(2) rf - rf)^2)
-    # (0.04 mm at the square's corner); a quarter disc as a Coons patch with a side collapsed into its
-    # centre gave wrong gaps to the nodes below that centre
+    # (0.04 mm at the square's corner), simpler than two strips and a quarter disc
     p.plane([S, S, t], [0, 1, 0], [1, 0, 0], [0, f - S, 0, f - S])                      # -z
     p.cylinder([f, 0, t + rp], [0, -1, 0], [0, 0, -1], rp, [0, 90, -c, -S])              # side x = a
     p.cylinder([0, f, t + rp], [1, 0, 0], [0, 0, -1], rp, [0, 90, S, c])                 # side y = a

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The NUMISHEET'93 benchmarks (2D draw bending, square cup): runs, post-processing, doc/forming.md.
 
-usage: numisheet93.py [--quick] [--variant final|gap] [--max-steps N] [--skip-runs] [--selftest]
+usage: numisheet93.py [--quick] [--variant final|gap] [--only uchannel|cup] [--max-steps N] [--skip-runs]
+                      [--selftest]
 Runs the cases cases/numisheet93_{uchannel,cup}_{coarse,fine}[ _gap].opts (--quick: the coarse meshes
 only), one at a time on one rank, then post-processes out/<case>/:
   U-channel: punch force (full blank, both sides) against the stroke from contact.csv; the
@@ -483,6 +484,7 @@ def main():
     ap.add_argument("--max-steps", type=int, default=0)
     ap.add_argument("--skip-runs", action="store_true")
     ap.add_argument("--selftest", action="store_true")
+    ap.add_argument("--only", choices=("uchannel", "cup"), help="run only this benchmark (both are post-processed)")
     a = ap.parse_args()
     if a.selftest:
         sys.exit(0 if selftest() else 1)
@@ -492,7 +494,8 @@ def main():
     ccases = ["numisheet93_cup_%s%s" % (lv, suffix) for lv in levels]
     if not a.skip_runs:
         for c in ucases + ccases:
-            run(c, a.max_steps)
+            if a.only is None or ("_%s_" % a.only) in c:
+                run(c, a.max_steps)
     U = [uchannel_post(c) for c in ucases]
     C = [cup_post(c) for c in ccases]
     plot_force(U)
