@@ -12,7 +12,8 @@ Two forms of every case:
                                     springback), the holder driven by its force, contact per tool;
   numisheet93_<b>_<mesh>_gap.opts   with the options available before those: the holder fixed at
                                     a gap equal to the sheet's thickness, one contact set and one
-                                    friction coefficient for all tools, no stages (the drawing only).
+                                    friction coefficient for all tools, no stages (the drawing only);
+  numisheet93_cup_<mesh>_gap110.opts  the same with the holder at a gap of 1.1 t.
 """
 import math
 import os
@@ -347,6 +348,21 @@ def cup_cases(level):
                    "-output_dir out/numisheet93_cup_%s_gap" % level])
 
 
+def cup_gap110_case(level):
+    """the fixed-gap cup with the holder lifted to a gap of 1.1 t over the first 2 % of the stroke: the
+    flange thickens under the hoop compression and a gap of t locks it."""
+    src = os.path.join(CASES, "numisheet93_cup_%s_gap.opts" % level)
+    lines = open(src).read().splitlines()
+    head = [l for l in lines if l.startswith("#")]
+    body = [l for l in lines if not l.startswith("#") and not l.startswith("-output_dir")]
+    lift = 0.1 * CUP["t"]
+    head.append("# Variant: the holder lifted by %g (a gap of 1.1 t) over the first 2 %% of the stroke, then held." % lift)
+    body += ["-tool_holder_path 0,0,0,0,0.02,0,0,%g,1,0,0,%g" % (lift, lift),
+             "-output_dir out/numisheet93_cup_%s_gap110" % level]
+    with open(os.path.join(CASES, "numisheet93_cup_%s_gap110.opts" % level), "w") as f:
+        f.write("\n".join(head + body) + "\n")
+
+
 def main():
     os.makedirs(SHEETS, exist_ok=True)
     uchannel_tools()
@@ -356,6 +372,7 @@ def main():
         uchannel_cases(level, h)
         cup_mesh(level)
         cup_cases(level)
+        cup_gap110_case(level)
 
 
 if __name__ == "__main__":

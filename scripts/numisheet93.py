@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The NUMISHEET'93 benchmarks (2D draw bending, square cup): runs, post-processing, doc/forming.md.
 
-usage: numisheet93.py [--quick] [--variant final|gap] [--only uchannel|cup] [--max-steps N] [--skip-runs]
-                      [--selftest]
+usage: numisheet93.py [--quick] [--variant final|gap] [--only uchannel|cup] [--max-steps N]
+                      [--timeout S] [--skip-runs] [--selftest]
 Runs the cases cases/numisheet93_{uchannel,cup}_{coarse,fine}[ _gap].opts (--quick: the coarse meshes
 only), one at a time on one rank, then post-processes out/<case>/:
   U-channel: punch force (full blank, both sides) against the stroke from contact.csv; the
@@ -13,8 +13,8 @@ only), one at a time on one rank, then post-processes out/<case>/:
 Writes the figure doc/figures/numisheet93_uchannel_force.png and the results section of
 doc/forming.md (between the numisheet93 markers) with the steps, Newton iterations and run times.
 --variant gap runs the variants with the holder at a fixed gap (no stages, no springback);
---max-steps N stops every run after N converged steps (partial runs: the post-processing reports
-what the run reached); --skip-runs only re-reads out/; --selftest checks the measurements on
+--max-steps N stops every run after N converged steps, --timeout S after S seconds (partial runs:
+the post-processing reports what the run reached); --skip-runs only re-reads out/; --selftest checks the measurements on
 synthetic sections and blanks of known geometry and exits."""
 import argparse
 import csv
@@ -37,7 +37,7 @@ CUP_HALF = 75.0
 
 
 # ---------------------------------------------------------------- runs
-def run(case, max_steps):
+def run(case, max_steps, timeout=None):
     os.makedirs(os.path.join(ROOT, "out"), exist_ok=True)
     log = os.path.join(ROOT, "out", case + ".log")
     cmd = [os.path.join(ROOT, "bin", "atrito"), "-options_file", os.path.join(ROOT, "cases", case + ".opts")]
@@ -45,10 +45,15 @@ def run(case, max_steps):
         cmd += ["-load_max_steps", str(max_steps)]
     t0 = time.time()
     with open(log, "w") as f:
-        r = subprocess.run(cmd, cwd=ROOT, env=env, stdout=f, stderr=subprocess.STDOUT)
-    print(f"{case}: exit {r.returncode}, {time.time() - t0:.1f} s", file=sys.stderr)
+        try:
+            rc = subprocess.run(cmd, cwd=ROOT, env=env, stdout=f, stderr=subprocess.STDOUT, timeout=timeout).returncode
+        except subprocess.TimeoutExpired:
+            rc = 124
+    print(f"{case}: exit {rc}, {time.time() - t0:.1f} s", file=sys.stderr)
     with open(log, "a") as f:
-        f.write("# wall time %.2f s, exit %d\n" % (time.time() - t0, r.returncode))
+        if rc == 124:
+            f.write("atrito: error: stopped by --timeout %g s\n" % timeout)
+        f.write("# wall time %.2f s, exit %d\n" % (time.time() - t0, rc))
 
 
 def run_info(case):
@@ -481,7 +486,9 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true", help="the coarse meshes only")
     ap.add_argument("--variant", choices=("final", "gap"), default="final")
+    ap.add_argument("--cup-gap110", action="store_true", help="with --variant gap: also the cup with the holder at a gap of 1.1 t")
     ap.add_argument("--max-steps", type=int, default=0)
+    ap.add_argument("--timeout", type=float, default=None, help="stop each run after this many seconds")
     ap.add_argument("--skip-runs", action="store_true")
     ap.add_argument("--selftest", action="store_true")
     ap.add_argument("--only", choices=("uchannel", "cup"), help="run only this benchmark (both are post-processed)")
@@ -492,10 +499,12 @@ def main():
     suffix = "" if a.variant == "final" else "_gap"
     ucases = ["numisheet93_uchannel_%s%s" % (lv, suffix) for lv in levels]
     ccases = ["numisheet93_cup_%s%s" % (lv, suffix) for lv in levels]
+    if a.variant == "gap" and a.cup_gap110:
+        ccases += ["numisheet93_cup_%s_gap110" % lv for lv in levels]
     if not a.skip_runs:
         for c in ucases + ccases:
             if a.only is None or ("_%s_" % a.only) in c:
-                run(c, a.max_steps)
+                run(c, a.max_steps, a.timeout)
     U = [uchannel_post(c) for c in ucases]
     C = [cup_post(c) for c in ccases]
     plot_force(U)
