@@ -349,15 +349,16 @@ def cup_cases(level):
 
 
 def cup_gap110_case(level):
-    """the fixed-gap cup with the holder lifted to a gap of 1.1 t over the first 2 % of the stroke: the
-    flange thickens under the hoop compression and a gap of t locks it."""
+    """the fixed-gap cup with the holder lifted to a gap of 1.1 t between 10 and 15 % of the stroke: the
+    flange thickens under the hoop compression and a gap of t locks it. (Lifted from the start, the
+    flange is free to tilt about the die's shoulder and the first step does not converge.)"""
     src = os.path.join(CASES, "numisheet93_cup_%s_gap.opts" % level)
     lines = open(src).read().splitlines()
     head = [l for l in lines if l.startswith("#")]
     body = [l for l in lines if not l.startswith("#") and not l.startswith("-output_dir")]
     lift = 0.1 * CUP["t"]
-    head.append("# Variant: the holder lifted by %g (a gap of 1.1 t) over the first 2 %% of the stroke, then held." % lift)
-    body += ["-tool_holder_path 0,0,0,0,0.02,0,0,%g,1,0,0,%g" % (lift, lift),
+    head.append("# Variant: the holder lifted by %g (a gap of 1.1 t) between 10 and 15 %% of the stroke, then held." % lift)
+    body += ["-tool_holder_path 0,0,0,0,0.1,0,0,0,0.15,0,0,%g,1,0,0,%g" % (lift, lift),
              "-output_dir out/numisheet93_cup_%s_gap110" % level]
     with open(os.path.join(CASES, "numisheet93_cup_%s_gap110.opts" % level), "w") as f:
         f.write("\n".join(head + body) + "\n")
