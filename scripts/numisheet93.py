@@ -369,9 +369,9 @@ def plot_sections(U, C):
     T = os.path.join(ROOT, "cases", "tools")
     jobs = [(axs[0], U[0] if U else None, "uchannel", "U-channel, section y = 0",
              lambda P: np.abs(P[:, 1]) < 0.3, lambda P: P[:, [0, 2]]),
-            (axs[1], C[0] if C else None, "cup", "square cup, section y = 0",
+            (axs[1], C[-1] if C else None, "cup", "square cup, section y = 0",
              lambda P: np.abs(P[:, 1]) < 0.3, lambda P: P[:, [0, 2]]),
-            (axs[2], C[0] if C else None, "cup", "square cup, diagonal section",
+            (axs[2], C[-1] if C else None, "cup", "square cup, diagonal section",
              lambda P: np.abs(P[:, 0] - P[:, 1]) < 0.3, lambda P: np.c_[(P[:, 0] + P[:, 1]) / math.sqrt(2), P[:, 2]])]
     colours = dict(punch="tab:red", die="tab:blue", holder="tab:green")
     for ax, res, bench, title, sel, coord in jobs:
