@@ -105,6 +105,8 @@ struct _p_Contact {
   PetscReal     aug_pen, aug_dlam; /* largest penetration and multiplier change of the last  */
   PetscReal    *lam_r;         /* ns*3: the previous Uzawa increment (Aitken's relaxation)    */
   PetscReal     omega[2];      /* the previous relaxation factors (normal, tangential)        */
+  PetscReal     kscale;        /* the penalties' factor in the current step (augmentation's growth) */
+  PetscReal     aug_grow, aug_grow_max; /* -contact_augmented_growth, _growth_max               */
   /* per-tool settings and drives, the tool unknowns */
   ToolContact  *tc;            /* ntools                                                      */
   char         *tmask;         /* ns*ntools: node i may pair with tool t (it is in the tool's sets) */
@@ -477,8 +479,11 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   PetscCheck(!(c->per_area && c->kauto), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area needs -contact_penalty_normal and -contact_penalty_tangential values per unit area (the automatic penalty, auto, is per node already)");
   c->aug_tol     = -1;
   c->aug_tol_rel = -1;
-  c->aug_mtol    = 1e-2;
+  c->aug_mtol    = 0.1;
   c->aug_max     = 20;
+  c->aug_grow    = 4;
+  c->aug_grow_max = 1e3;
+  c->kscale      = 1;
   PetscCall(PetscOptionsBool("-contact_augmented", "Augmented Lagrangian: Uzawa updates of the nodal multipliers between Newton solves until the penetration is below the tolerance", NULL, c->aug, &c->aug, NULL));
   {
     PetscBool sa, sr, sm, sx;
@@ -486,6 +491,10 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     PetscCall(PetscOptionsReal("-contact_augmented_tol_relative", "Augmented Lagrangian: the tolerance as a fraction of the smallest element size normal to the contact faces (with -contact_augmented_tol: the smaller of the two)", NULL, c->aug_tol_rel, &c->aug_tol_rel, &sr));
     PetscCall(PetscOptionsReal("-contact_augmented_multiplier_tol", "Augmented Lagrangian: largest change of a nodal multiplier accepted, relative to the largest multiplier", NULL, c->aug_mtol, &c->aug_mtol, &sm));
     PetscCall(PetscOptionsInt("-contact_augmented_max", "Augmented Lagrangian: Newton solves (multiplier updates) allowed per load step", NULL, c->aug_max, &c->aug_max, &sx));
+    PetscCall(PetscOptionsReal("-contact_augmented_growth", "Augmented Lagrangian: factor on the penalties (for the rest of the step) after an update that did not reduce the largest penetration by 4 (1: never)", NULL, c->aug_grow, &c->aug_grow, NULL));
+    PetscCall(PetscOptionsReal("-contact_augmented_growth_max", "Augmented Lagrangian: largest factor the penalties grow by within a step", NULL, c->aug_grow_max, &c->aug_grow_max, NULL));
+    PetscCheck(c->aug_grow >= 1 && PetscIsNormalReal(c->aug_grow), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_growth %g must be >= 1", (double)c->aug_grow);
+    PetscCheck(c->aug_grow_max >= 1 && PetscIsNormalReal(c->aug_grow_max), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_growth_max %g must be >= 1", (double)c->aug_grow_max);
     PetscCheck(!sa || (c->aug_tol > 0 && PetscIsNormalReal(c->aug_tol)), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_tol %g must be positive", (double)c->aug_tol);
     PetscCheck(!sr || (c->aug_tol_rel > 0 && PetscIsNormalReal(c->aug_tol_rel)), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_tol_relative %g must be positive", (double)c->aug_tol_rel);
     PetscCheck(c->aug_mtol > 0 && PetscIsNormalReal(c->aug_mtol), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_multiplier_tol %g must be positive", (double)c->aug_mtol);
@@ -628,6 +637,10 @@ static inline ContactLaw NodeLaw(const struct _p_Contact *contact, PetscInt i, P
   } else if (contact->per_area) { /* penalties per unit area times the node's tributary area */
     law.KN *= contact->mesh->varea[contact->slave[i]];
     law.KT *= contact->mesh->varea[contact->slave[i]];
+  }
+  if (contact->kscale != 1) { /* grown by the augmentation within the current step */
+    law.KN *= contact->kscale;
+    law.KT *= contact->kscale;
   }
   return law;
 }
@@ -846,6 +859,7 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
   PetscFunctionBeginUser;
   if (from_committed) { /* a step or a retry: no augmentation yet (on every rank) */
     contact->naug     = 0;
+    contact->kscale   = 1; /* the penalties as given: a step and each retry start from them */
     contact->omega[0] = contact->omega[1] = 1;
     contact->aug_pen = contact->aug_dlam = 0;
   }
@@ -1351,6 +1365,16 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool *converged, PetscReal *
   }
   contact->omega[0] = omega[0];
   contact->omega[1] = omega[1];
+  /* Uzawa's rate is the penalty's stiffness against the body's: with a soft penalty each update
+     removes only a small part of the penetration. An update that did not reduce the largest
+     penetration by 4 (and left it above the tolerance) makes the penalties of the rest of the step
+     -contact_augmented_growth times stiffer (at most -contact_augmented_growth_max); the
+     multipliers carry on (the force of a node is its multiplier plus its penalty times its
+     penetration, so the converged forces do not depend on the factor), the relaxation restarts. */
+  if (contact->naug > 0 && contact->aug_grow > 1 && gl[0] > contact->tol && gl[0] > 0.25 * contact->aug_pen && contact->kscale * contact->aug_grow <= contact->aug_grow_max * (1 + 1e-12)) {
+    contact->kscale *= contact->aug_grow;
+    contact->omega[0] = contact->omega[1] = 1;
+  }
   contact->naug++;
   contact->aug_pen  = gl[0];
   contact->aug_dlam = gl[2];

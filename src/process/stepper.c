@@ -87,7 +87,6 @@ PetscErrorCode StepperSetUp(Stepper *st, BCs *bcs, Contact contact)
     PetscCall(ContactGetTool(contact, t, &tl));
     if (tl->amp.n > 0) amp = PETSC_TRUE;
   }
-  if (ContactNextKink(contact, -PETSC_MAX_REAL) < PETSC_INFINITY) amp = PETSC_TRUE; /* force curves */
   if (!st->kinks_set) st->kinks = (st->stages.given || amp) ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
