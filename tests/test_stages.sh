@@ -154,14 +154,16 @@ print(("ok - " if good else "not ok - ") + f"release: the punch's fz follows {f0
 PYEOF
 grep -q "WARNING: stage springback removes tool" "$OUT/rel_np1.log" && not_ok "the released punch is reported as removed with a force" || ok "no removal warning after the release"
 # the tool's own displacement once it has left the body has no equilibrium value (doc/contact.md):
-# not compared
+# not compared. 1e-7: the last nodes leave the punch as its force reaches zero, at an iterate that
+# the round-off of the two rank counts decides (measured up to 2.4e-8 of the largest force in the
+# springback step, below 1e-12 before it)
 TOOLPOS="--skip residual_*,dx,dy,dz,travel,path_length"
-cmp8r() { $PY tests/compare_csv.py "$1" "$2" --rtol 1e-8 --atol 0 $TOOLPOS --int-tol newton_its=1 --label "$3"; }
-for f in history.csv contact.csv; do cmp8r "$OUT/rel_np1/$f" "$OUT/rel_np2/$f" "release np=1 against np=2, $f, 1e-8 (the tool's position after the release not compared)"; done
+cmp8r() { $PY tests/compare_csv.py "$1" "$2" --rtol 1e-7 --atol 0 $TOOLPOS --int-tol newton_its=1 --label "$3"; }
+for f in history.csv contact.csv; do cmp8r "$OUT/rel_np1/$f" "$OUT/rel_np2/$f" "release np=1 against np=2, $f, 1e-7 (the tool's position after the release not compared)"; done
 $MPI 1 $A $REL -output_dir "$OUT/relstop" -checkpoint_interval 1 -load_max_steps 6 </dev/null >"$OUT/relstop1.log" 2>&1
 $MPI 2 $A $REL -output_dir "$OUT/relstop" -restart "$OUT/relstop/checkpoint.h5" </dev/null >"$OUT/relstop2.log" 2>&1 || not_ok "restart in stage release failed"
 grep -q "restart from .*: step 6, time 1.5, stage release" "$OUT/relstop2.log" && ok "restart from step 6, time 1.5, in stage release" || not_ok "restart did not start in the release: $(grep -o 'restart from.*' "$OUT/relstop2.log")"
-for f in history.csv contact.csv; do cmp8r "$OUT/rel_np1/$f" "$OUT/relstop/$f" "restarted in the release (on 2 ranks) against the uninterrupted run, $f, 1e-8"; done
+for f in history.csv contact.csv; do cmp8r "$OUT/rel_np1/$f" "$OUT/relstop/$f" "restarted in the release (on 2 ranks) against the uninterrupted run, $f, 1e-7"; done
 
 # 8. bad input: one line naming the option
 bad() { # bad EXPECTED NP ARGS...

@@ -648,21 +648,27 @@ PetscErrorCode MeshDestroy(Mesh *pb)
   PetscFunctionReturn(0);
 }
 
+/* copies n set names into one of the mesh's lists of at most 8 (`what` names it in the error) */
+static PetscErrorCode SetNames(PetscInt n, char (*sets)[ATRITO_NAME_LEN], PetscInt *nout, char (*out)[ATRITO_NAME_LEN], const char *what)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n <= 8, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "at most 8 %s, got %" PetscInt_FMT, what, n);
+  *nout = n;
+  for (PetscInt i = 0; i < n; i++) PetscCall(PetscStrncpy(out[i], sets[i], ATRITO_NAME_LEN));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MeshSetContactSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN])
 {
   PetscFunctionBeginUser;
-  PetscCheck(n <= 8, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "at most 8 contact sets are balanced by the partition, got %" PetscInt_FMT, n);
-  m->ncontact_set = n;
-  for (PetscInt i = 0; i < n; i++) PetscCall(PetscStrncpy(m->contact_set[i], sets[i], ATRITO_NAME_LEN));
+  PetscCall(SetNames(n, sets, &m->ncontact_set, m->contact_set, "contact sets are balanced by the partition"));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode MeshSetAreaSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN])
 {
   PetscFunctionBeginUser;
-  PetscCheck(n <= 8, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "at most 8 sets carry tributary areas, got %" PetscInt_FMT, n);
-  m->narea_set = n;
-  for (PetscInt i = 0; i < n; i++) PetscCall(PetscStrncpy(m->area_set[i], sets[i], ATRITO_NAME_LEN));
+  PetscCall(SetNames(n, sets, &m->narea_set, m->area_set, "sets carry tributary areas"));
   PetscFunctionReturn(0);
 }
 

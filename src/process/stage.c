@@ -114,6 +114,19 @@ PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_ste
   PetscFunctionReturn(0);
 }
 
+/* the index of the tool named `name`, -1 if none */
+static PetscErrorCode FindTool(Contact contact, const char *name, PetscInt *found)
+{
+  PetscFunctionBeginUser;
+  *found = -1;
+  for (PetscInt t = 0; t < ContactNumTools(contact); t++) {
+    const Tool *tl = NULL;
+    PetscCall(ContactGetTool(contact, t, &tl));
+    if (!strcmp(tl->name, name)) *found = t;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode StagesSetUp(Stages *sg, BCs *bcs, Contact contact)
 {
   const PetscInt nt = ContactNumTools(contact);
@@ -124,23 +137,15 @@ PetscErrorCode StagesSetUp(Stages *sg, BCs *bcs, Contact contact)
     Stage *s = &sg->s[k];
     for (PetscInt t = 0; t < nt; t++) s->tool_on[t] = s->ntools < 0 ? PETSC_TRUE : PETSC_FALSE;
     for (PetscInt j = 0; j < s->ntools; j++) {
-      PetscInt found = -1;
-      for (PetscInt t = 0; t < nt; t++) {
-        const Tool *tl = NULL;
-        PetscCall(ContactGetTool(contact, t, &tl));
-        if (!strcmp(tl->name, s->tools[j])) found = t;
-      }
+      PetscInt found;
+      PetscCall(FindTool(contact, s->tools[j], &found));
       PetscCheck(found >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_tools: unknown tool '%s' (not in -tool_names)", s->name, s->tools[j]);
       s->tool_on[found] = PETSC_TRUE;
     }
     for (PetscInt t = 0; t < nt; t++) s->tool_release[t] = PETSC_FALSE;
     for (PetscInt j = 0; j < s->nrelease; j++) {
-      PetscInt found = -1;
-      for (PetscInt t = 0; t < nt; t++) {
-        const Tool *tl = NULL;
-        PetscCall(ContactGetTool(contact, t, &tl));
-        if (!strcmp(tl->name, s->release[j])) found = t;
-      }
+      PetscInt found;
+      PetscCall(FindTool(contact, s->release[j], &found));
       PetscCheck(found >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_release: unknown tool '%s' (not in -tool_names)", s->name, s->release[j]);
       PetscCheck(s->tool_on[found], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_release: tool '%s' is not present in the stage (-stage_%s_tools)", s->name, s->release[j], s->name);
       s->tool_release[found] = PETSC_TRUE;
