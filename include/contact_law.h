@@ -18,6 +18,7 @@
 
 typedef struct {
   double KN, KT, mu;
+  double delta; /* > 0: the normal bracket smoothed over gaps -delta..delta (-contact_gap_smoothing) */
 } ContactLaw;
 
 #define CONTACT_OPEN  0

@@ -33,7 +33,7 @@ static int node_on_sphere(const ContactLaw *law, const double c[3], double Rs, c
 
 int main(void)
 {
-  ContactLaw law = {1e5, 5e3, 0.15};
+  ContactLaw law = {1e5, 5e3, 0.15, 0};
   srand(4321);
 
   /* return map: stick, slip, the cone, separation */
@@ -214,6 +214,44 @@ int main(void)
       }
       TU_CHECK(worst < 1e-6 && status == (k == 0 ? CONTACT_STICK : CONTACT_SLIP) && cone < 1e-12, "augmented kernel on a sphere, %s (lN > 0, penetrated and standing off): tangent vs finite differences %.2e (relative to K_N), slip on the cone to %.1e", label[k], worst, cone);
     }
+    /* gap smoothing (law.delta > 0): the tangent against central differences in the band and
+       beyond it, stick and slip, with and without a multiplier; t_N continuous and C1 at the band's
+       ends; the same as the plain bracket beyond it */
+    {
+      ContactLaw   ls = law;
+      double       worst = 0, jump = 0;
+      const double n[3] = {0, 0.6, 0.8}, s[3] = {1, 0, 0}, tTn[2] = {30, -20};
+      ls.delta = 1e-3;
+      for (int c2 = 0; c2 < 12; c2++) {
+        const double g = -2e-3 + c2 * 3.5e-4, lN = (c2 % 3 == 0) ? 20.0 : 0.0, dsx = (c2 % 2) ? 1e-5 : 1e-2;
+        const double ds[3] = {dsx, -0.5 * dsx, 0.3 * dsx};
+        double       R[3], K[9], t1[3], tT[2], tN;
+        if (ContactNodeEvalAug(&ls, lN, g, n, NULL, s, tTn, ds, R, K, t1, &tN, tT) == CONTACT_OPEN) continue;
+        for (int j = 0; j < 3; j++) {
+          const double h = 1e-8;
+          double       Rp[3], Rm[3], tt1[3], ttT[2], ttN;
+          /* a move of the node by dy along j: gap g + n.dy, slip increment ds + dy */
+          const double dgp = h * n[j], dsp[3] = {ds[0] + (j == 0) * h, ds[1] + (j == 1) * h, ds[2] + (j == 2) * h}, dsm[3] = {ds[0] - (j == 0) * h, ds[1] - (j == 1) * h, ds[2] - (j == 2) * h};
+          ContactNodeEvalAug(&ls, lN, g + dgp, n, NULL, s, tTn, dsp, Rp, NULL, tt1, &ttN, ttT);
+          ContactNodeEvalAug(&ls, lN, g - dgp, n, NULL, s, tTn, dsm, Rm, NULL, tt1, &ttN, ttT);
+          for (int i = 0; i < 3; i++) worst = fmax(worst, fabs((Rp[i] - Rm[i]) / (2 * h) - K[3 * i + j]) / ls.KN);
+        }
+      }
+      for (int side = -1; side <= 1; side += 2) { /* the band's ends x = -w, x = w (lN = 0: g = delta, g = -delta) */
+        const double ge = -side * ls.delta, ds[3] = {0, 0, 0};
+        double       R[3], t1[3], tT[2], tNa, tNb;
+        ContactNodeEvalAug(&ls, 0.0, ge * (1 - 1e-9), n, NULL, s, tTn, ds, R, NULL, t1, &tNa, tT);
+        ContactNodeEvalAug(&ls, 0.0, ge * (1 + 1e-9), n, NULL, s, tTn, ds, R, NULL, t1, &tNb, tT);
+        jump = fmax(jump, fabs(tNa - tNb) / (ls.KN * ls.delta));
+      }
+      {
+        double R1[3], R2[3], t1[3], tT[2], tN1, tN2;
+        const double ds[3] = {1e-4, 0, 0};
+        ContactNodeEvalAug(&law, 0.0, -5e-3, n, NULL, s, tTn, ds, R1, NULL, t1, &tN1, tT);
+        ContactNodeEvalAug(&ls, 0.0, -5e-3, n, NULL, s, tTn, ds, R2, NULL, t1, &tN2, tT);
+        TU_CHECK(worst < 1e-6 && jump < 1e-6 && tN1 == tN2 && R1[0] == R2[0] && R1[1] == R2[1] && R1[2] == R2[2], "gap smoothing: tangent vs finite differences %.2e (relative to K_N) in and beyond the band, stick and slip, with and without a multiplier; t_N continuous at the band's ends (%.1e of K_N delta); the plain law beyond the band", worst, jump);
+      }
+    }
     /* Uzawa on one node pushed by a spring k_s = K_N into a rigid wall: lN <- lN + K_N p drives
        the penetration to zero and lN to the exact contact force */
     {
@@ -241,7 +279,7 @@ int main(void)
     const double c[3] = {0, 0, 0}, Rs = 1.0;
     const int    N = 400;
     double       seed[3] = {0, 1, 0}, tTn[2] = {0, 0}, yprev[3], t1prev[3] = {0, 0, 0}, worstjump = 0, worstorth = 0, worstopp = 1;
-    ContactLaw   lw = {1e4, 1e3, 0.3};
+    ContactLaw   lw = {1e4, 1e3, 0.3, 0};
     for (int k = 0; k <= N; k++) {
       /* node sliding in the x-z plane, slightly inside the sphere */
       const double th = 0.5 * 3.14159265358979323846 * k / N, r = Rs - 1e-3;

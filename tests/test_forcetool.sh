@@ -18,6 +18,10 @@ atrito 1 jaccoo $CASE -output_interval 0 -snes_test_jacobian -assembly_coo &&
   pycheck snes_test_jacobian "$OUT/jaccoo.log" 10 1e-5 "force-driven holder (-assembly_coo)" --contact "$OUT/jaccoo"
 atrito 2 jac2 $CASE -output_interval 0 -snes_test_jacobian -assembly_coo &&
   pycheck snes_test_jacobian "$OUT/jac2.log" 10 1e-5 "force-driven holder (np=2, -assembly_coo)" --contact "$OUT/jac2"
+# with the normal force smoothed about gap 0 (-contact_gap_smoothing: nodes inside the band carry
+# a part of the force with a part of the stiffness)
+atrito 2 jacsm $CASE -output_interval 0 -snes_test_jacobian -contact_gap_smoothing 0.001 &&
+  pycheck snes_test_jacobian "$OUT/jacsm.log" 10 1e-5 "force-driven holder, -contact_gap_smoothing 0.001 (np=2)" --contact "$OUT/jacsm"
 
 # 2. the converged holder force equals the target at every step, to the Newton residual; the
 #    per-tool friction (die 0.1, holder 0.3, global 0.2) holds at every slipping node of each

@@ -502,6 +502,8 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     if (!sa && !sr) c->aug_tol_rel = 1e-2;
   }
   PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient mu", NULL, c->law.mu, &c->law.mu, NULL));
+  PetscCall(PetscOptionsReal("-contact_gap_smoothing", "Width (a length) over which the normal contact force is smoothed about gap 0 (C1 quadratic; 0: the plain bracket)", "doc/contact.md", c->law.delta, &c->law.delta, NULL));
+  PetscCheck(c->law.delta >= 0 && !PetscIsInfOrNanReal(c->law.delta), comm, PETSC_ERR_USER_INPUT, "-contact_gap_smoothing %g must be >= 0", (double)c->law.delta);
   PetscCheck(c->kauto || (c->law.KN > 0 && PetscIsNormalReal(c->law.KN)), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal %g must be positive", (double)c->law.KN);
   PetscCheck(c->ktauto || (c->law.KT > 0 && PetscIsNormalReal(c->law.KT)), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_tangential %g must be positive", (double)c->law.KT);
   PetscCheck(c->law.mu >= 0 && (c->law.mu == 0 || PetscIsNormalReal(c->law.mu)), comm, PETSC_ERR_USER_INPUT, "-contact_friction %g must be >= 0", (double)c->law.mu);
@@ -893,7 +895,8 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
       /* start of a Newton iteration: eq 30, t2 = n x t1(previous iteration), t1 = t2 x n, for the
          nodes in contact; a node out of contact forgets its frame */
       const double lN    = contact->lam_tool[i] == tool ? contact->lam[3 * i] : 0;
-      const PetscBool in = (pr.gap <= 0 || (lN > 0 && lN - NodeLaw(contact, i, tool).KN * pr.gap > 0)) ? PETSC_TRUE : PETSC_FALSE;
+      const ContactLaw nl = NodeLaw(contact, i, tool);
+      const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta)) ? PETSC_TRUE : PETSC_FALSE;
       if (in && contact->has_seed[i] && !ContactFrame(pr.n, contact->seed + 3 * i, t1, t2))
         for (int k = 0; k < 3; k++) contact->seed[3 * i + k] = t1[k];
       else if (!in) contact->has_seed[i] = PETSC_FALSE;
@@ -943,7 +946,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
     tTn[0] = contact->lam[3 * i + 1];
     tTn[1] = contact->lam[3 * i + 2];
   }
-  if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0)) return 0;
+  if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0) && !(law.delta > 0 && lN - law.KN * pr.gap > -law.KN * law.delta)) return 0; /* open (the kernel's test) */
 
   const Tool *tl = &contact->tools[tool];
   CurShift(contact, tool, lambda, sh);

@@ -102,14 +102,27 @@ int ContactNodeEvalAug(const ContactLaw *law, double lN, double g, const double 
     ContactFrame(n, a, t1, t2);
   }
   /* active when penetrated, or when the multiplier still holds the node (t_N = lN - K_N g > 0);
-     touching (g = 0) is active, with zero force (lN = 0) and full stiffness */
-  if (g > 0 && !(lN - law->KN * g > 0)) return CONTACT_OPEN;
-
-  const double p = -g;
-  *tN            = lN > 0 ? lN + law->KN * p : law->KN * p;
-  dg[0]          = t1[0] * ds[0] + t1[1] * ds[1] + t1[2] * ds[2];
-  dg[1]          = t2[0] * ds[0] + t2[1] * ds[1] + t2[2] * ds[2];
-  status         = ContactReturnMap(law, tTn, dg, *tN, tT, K ? Y : NULL);
+     touching (g = 0) is active, with zero force (lN = 0) and full stiffness.
+     With law->delta > 0 the bracket t_N = <x>, x = lN - K_N g, is smoothed over |x| < w = K_N delta:
+     t_N = (x + w)^2 / (4 w), dt_N/dx = (x + w) / (2 w) there (C1: t_N = w and slope 1 at x = w,
+     0 and 0 at x = -w), so that a node resting near g = 0 does not switch between no force and
+     full stiffness from one iterate to the next; the force starts at the gap delta (without
+     multiplier). The tangent uses the local stiffness K_N dt_N/dx (lw below). */
+  ContactLaw   lw = *law;
+  const double p  = -g;
+  if (law->delta > 0) {
+    const double x = lN - law->KN * g, w = law->KN * law->delta;
+    if (!(x > -w)) return CONTACT_OPEN;
+    *tN   = x >= w ? x : (x + w) * (x + w) / (4 * w);
+    lw.KN = x >= w ? law->KN : law->KN * (x + w) / (2 * w);
+  } else {
+    if (g > 0 && !(lN - law->KN * g > 0)) return CONTACT_OPEN;
+    *tN = lN > 0 ? lN + law->KN * p : law->KN * p;
+  }
+  law    = &lw;
+  dg[0]  = t1[0] * ds[0] + t1[1] * ds[1] + t1[2] * ds[2];
+  dg[1]  = t2[0] * ds[0] + t2[1] * ds[1] + t2[2] * ds[2];
+  status = ContactReturnMap(law, tTn, dg, *tN, tT, K ? Y : NULL);
   for (int i = 0; i < 3; i++) R[i] = -(*tN) * n[i] + tT[0] * t1[i] + tT[1] * t2[i];
   if (!K) return status;
 
