@@ -55,7 +55,8 @@ PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c);
    ContactSetUp only a tool that owns unknowns can be switched to force. */
 PetscErrorCode ContactSetToolDrive(Contact c, PetscInt tool, PetscInt dir, ToolDrive mode, const LoadCurve *force);
 /* Force-controlled release (a stage's -stage_<s>_release): from the committed time t0 to t1 the
-   tool is driven by force in x, y and z, the target going linearly from the force it exerts now
+   tool is driven by force along the axes in which it carries more than 1e-3 of its force (holding
+   its position along the others), the target going linearly from the force it exerts now
    (committed) to zero; it needs unknowns (ContactReserveToolUnknowns before the setup). The release
    is part of the tools' checkpoint. */
 PetscErrorCode ContactReleaseTool(Contact c, PetscInt tool, PetscReal t0, PetscReal t1);

@@ -341,15 +341,23 @@ PetscErrorCode ContactSetToolDrive(Contact c, PetscInt tool, PetscInt dir, ToolD
   PetscFunctionReturn(0);
 }
 
-/* the three force curves of a release: from rel_f at rel_t[0] linearly to 0 at rel_t[1] */
+/* the force curves of a release: from rel_f at rel_t[0] linearly to 0 at rel_t[1], along the
+   directions in which the tool carries more than 1e-3 of its force; along the others it holds its
+   position (a direction with no force there has only the friction's stiffness, which vanishes
+   with the force: driven by force it would leave the tool free at the release's end) */
 static PetscErrorCode ReleaseDrive(Contact c, PetscInt tool)
 {
-  ToolContact *tc = &c->tc[tool];
+  ToolContact    *tc = &c->tc[tool];
+  const PetscReal fm = PetscSqrtReal(PetscSqr(tc->rel_f[0]) + PetscSqr(tc->rel_f[1]) + PetscSqr(tc->rel_f[2]));
 
   PetscFunctionBeginUser;
   for (PetscInt d = 0; d < 3; d++) {
     LoadCurve       cv;
     const PetscReal v[2] = {tc->rel_f[d], 0};
+    if (!(PetscAbsReal(tc->rel_f[d]) > 1e-3 * fm)) {
+      if (tc->drive[d] == TOOL_DRIVE_FORCE) PetscCall(ContactSetToolDrive(c, tool, d, TOOL_DRIVE_DISPLACEMENT, NULL));
+      continue;
+    }
     PetscCall(LoadCurveCreate(c->comm, "release", 2, tc->rel_t, v, &cv));
     PetscCall(ContactSetToolDrive(c, tool, d, TOOL_DRIVE_FORCE, &cv));
     PetscCall(LoadCurveDestroy(&cv));
