@@ -25,7 +25,7 @@ typedef enum { TOOL_DRIVE_DISPLACEMENT = 0, TOOL_DRIVE_FORCE } ToolDrive;
 typedef struct {
   const char *name;
   double shift[3];   /* the tool's displacement                                                  */
-  double dir[3];     /* the direction of force and travel: the motion at load 1 (+z if fixed)    */
+  double dir[3];     /* the direction of force and travel: -motion, or the last point of -path (+z if fixed) */
   double travel;     /* shift . dir                                                              */
   double path;       /* path length travelled along the tool's path                              */
   double f[3];       /* resultant of the forces the tool exerts on the body (modelled part)      */

@@ -1437,12 +1437,16 @@ PetscErrorCode ContactRecordActive(Contact contact)
   PetscFunctionReturn(0);
 }
 
-/* direction along which a tool's force and travel are reported: its motion at load 1, or +z for a
-   fixed tool */
+/* the direction along which a tool's force and travel are reported: its -motion vector, or the displacement at the last
+   point of its -path (the whole process, stages included), +z for a fixed tool */
 static void ToolDirection(const Tool *t, double m[3])
 {
   double sh[3], nrm;
-  ToolShift(t, 1.0, sh);
+  if (t->motion[0] != 0 || t->motion[1] != 0 || t->motion[2] != 0)
+    for (int k = 0; k < 3; k++) sh[k] = t->motion[k];
+  else if (t->npath > 0)
+    for (int k = 0; k < 3; k++) sh[k] = t->path[4 * (t->npath - 1) + 1 + k];
+  else ToolShift(t, 1.0, sh);
   nrm = sqrt(sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
   if (nrm > 0)
     for (int k = 0; k < 3; k++) m[k] = sh[k] / nrm;

@@ -8,7 +8,8 @@
    name of the step's stage; "load" without stages).
 
    contact.csv, one row per step and tool: step, time, tool, travel (the displacement along the
-   tool's direction: its motion at load 1, +z for a fixed tool), force (the force the tool exerts
+   tool's direction: its -motion vector, or the displacement at the last point of its -path, +z
+   for a fixed tool), force (the force the tool exerts
    on the modelled part along that direction), force_full (times -model_symmetry), newton_its,
    active (nodes pressed against the tool), stick, slip (of those; counted with friction only),
    max_penetration, then dx, dy, dz (the tool's displacement), path_length (travelled along its
