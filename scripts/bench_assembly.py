@@ -563,7 +563,7 @@ def cmp_table(cmp, mi):
     nc = cells[0] * cells[1] * cells[2]
     A("### Before and after\n")
     A(f"The baseline `{b}` (`--baseline`, built by the script from the repository in a temporary directory with "
-      f"the same Makefile flags) against this code (`{n}`), alternating run by run in the same session: the kernel "
+      f"the same Makefile flags) against this code (`{n}`), alternating run by run in the same invocation: the kernel "
       f"driver {cmp['kernel_rounds']} times each ({KERNEL_REPS} repetitions per run, pooled), the full assembly "
       f"on the {nc:,}-cell mesh {cmp['reps']} times each per variant. Kernel rates by wall time and by the thread's "
       "CPU time (the latter does not count the time other processes held the core, so it is the steadier one on a "
@@ -622,7 +622,7 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
       "both ranks on the expected error exit and their CPU time is accounted)")
     dirty = f"; uncommitted changes in {', '.join('`' + d + '`' for d in mi['dirty'])}" if mi["dirty"] else ""
     A(f"- Code: commit `{mi['commit']}`{dirty}; binaries {build_state}")
-    A(f"- Load average (1 min) before / after the benchmark: {load0:.2f} / {load1:.2f}. Other sessions share this "
+    A(f"- Load average (1 min) before / after the benchmark: {load0:.2f} / {load1:.2f}. Other jobs share this "
       "2-core machine; the load they caused during each run is given in the last column of the first table\n")
 
     A("### Method\n")
