@@ -459,6 +459,42 @@ typedef struct {
 
 #define SEEN_MAX 64
 
+/* facet k's squared distance to y, computed once (a facet found again takes its record: seen).
+   Returns 1 when k needs nothing more (seen before, and no list is kept or it is listed already);
+   *q: its record, -1 when the records are full */
+static inline int SeenDistance(const FacetsData *m, int k, const double y[3], int listing, Seen *seen, int *ns, int *q, double *d2)
+{
+  *q = 0;
+  while (*q < *ns && seen[*q].f != k) (*q)++;
+  if (*q < *ns) {
+    if (!listing || seen[*q].listed) return 1;
+    *d2 = seen[*q].d2;
+  } else {
+    double u, v;
+    int    reg;
+    *d2 = TriClosest(m, k, y, &u, &v, &reg);
+    if (*ns < SEEN_MAX) {
+      seen[*ns].f      = k;
+      seen[*ns].listed = 0;
+      seen[(*ns)++].d2 = *d2;
+    } else *q = -1; /* not recorded */
+  }
+  return 0;
+}
+
+/* candidate k (record q) into the list, once; returns 1 when the list is full */
+static inline int ListAdd(Best *list, int *nl, Seen *seen, int q, int k, double d2)
+{
+  if (q < 0) { /* not recorded: listed already? */
+    for (int t = 0; t < *nl; t++)
+      if (list[t].f == k) return 0;
+  } else seen[q].listed = 1;
+  if (*nl == 256) return 1;
+  list[*nl].d2    = d2;
+  list[(*nl)++].f = k;
+  return 0;
+}
+
 /* The closest facet as TreeClosestCollect from b (a facet's distance: the warm start's bound),
    searching only the grid's cells within that bound; seen: the facets already evaluated (each
    facet is evaluated once, though it is listed in several cells). Returns 1 (b, list untouched or
@@ -500,38 +536,16 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
         if (!c) continue;
         for (int j = c->start; j < c->start + c->count; j++) {
           const int k = m->glist[j];
-          int       q = 0;
+          int       q;
           double    d2;
-          while (q < *ns && seen[q].f != k) q++;
-          if (q < *ns) {
-            if (!list || seen[q].listed) continue;
-            d2 = seen[q].d2;
-          } else {
-            double u, v;
-            int    reg;
-            d2 = TriClosest(m, k, y, &u, &v, &reg);
-            if (*ns < SEEN_MAX) {
-              seen[*ns].f      = k;
-              seen[*ns].listed = 0;
-              seen[(*ns)++].d2 = d2;
-            } else q = -1; /* not recorded */
-          }
+          if (SeenDistance(m, k, y, list != NULL, seen, ns, &q, &d2)) continue;
           if (Better(d2, k, b)) {
             b->d2 = d2;
             b->f  = k;
             if (list) R2 = CandidateRadius2(m, d2);
             else R2 = d2;
           }
-          if (list && d2 <= R2) {
-            if (q < 0) { /* not recorded: listed already? */
-              int dup = 0;
-              for (int t = 0; t < *nl && !dup; t++) dup = list[t].f == k;
-              if (dup) continue;
-            } else seen[q].listed = 1;
-            if (*nl == 256) return 1;
-            list[*nl].d2    = d2;
-            list[(*nl)++].f = k;
-          }
+          if (list && d2 <= R2 && ListAdd(list, nl, seen, q, k, d2)) return 1;
         }
       }
   return 0;
@@ -749,36 +763,14 @@ static int LocalClosestCollect(const FacetsData *m, const double y[3], Best *b, 
       for (int c = 0; c < 3; c++) Prefetch(&m->V[3 * m->F[3 * m->st[j] + c]]);
     for (int j = j0; j < j1; j++) {
       const int k = m->st[j];
-      int       q = 0;
+      int       q;
       double    d2;
-      while (q < *ns && seen[q].f != k) q++;
-      if (q < *ns) {
-        if (!list || seen[q].listed) continue;
-        d2 = seen[q].d2;
-      } else {
-        double u, v;
-        int    reg;
-        d2 = TriClosest(m, k, y, &u, &v, &reg);
-        if (*ns < SEEN_MAX) {
-          seen[*ns].f      = k;
-          seen[*ns].listed = 0;
-          seen[(*ns)++].d2 = d2;
-        } else q = -1; /* not recorded */
-      }
+      if (SeenDistance(m, k, y, list != NULL, seen, ns, &q, &d2)) continue;
       if (Better(d2, k, b)) {
         b->d2 = d2;
         b->f  = k;
       }
-      if (list && d2 <= R2) {
-        if (q < 0) { /* not recorded: listed already? */
-          int dup = 0;
-          for (int t = 0; t < *nl && !dup; t++) dup = list[t].f == k;
-          if (dup) continue;
-        } else seen[q].listed = 1;
-        if (*nl == 256) return 1;
-        list[*nl].d2    = d2;
-        list[(*nl)++].f = k;
-      }
+      if (list && d2 <= R2 && ListAdd(list, nl, seen, q, k, d2)) return 1;
     }
   }
   return 0;
