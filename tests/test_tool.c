@@ -1684,7 +1684,7 @@ static void test_facets_sphere(void)
       continue;
     }
     const Patch *p = &T[0].patch[0];
-    int          same = 1, hint_same = 1, nfd = 0;
+    int          same = 1, hint_same = 1, nfd = 0, nbad = 0;
     double       egap = 0, en = 0, edn = 0, chord = HUGE_VAL;
     for (int k = 0; k < 2000; k++) {
       double       y[3], d2t, d2b, yr[3];
@@ -1695,6 +1695,11 @@ static void test_facets_sphere(void)
       for (int i = 0; i < 3; i++) yr[i] = y[i] - sh[i];
       const int ft = FacetsTreeClosest(p, yr, &d2t), fb = FacetsBruteClosest(p, yr, &d2b);
       if (ft != fb || d2t != d2b) same = 0;
+      if (k < 200) { /* every node's lower bound (box and oriented box) below its facets' distance */
+        double mg;
+        nbad += FacetsCheckNodeBounds(p, yr, &mg);
+        if (mg < 0) nbad++;
+      }
       Projection pr, ph_, hint;
       if (ToolProject(&T[0], sh, y, PETSC_INFINITY, &pr)) {
         same = 0;
@@ -1743,6 +1748,7 @@ static void test_facets_sphere(void)
     const FacetsData *m = (const FacetsData *)p->data;
     TU_CHECK(same, "facets sphere (%d triangles, %s): the hierarchy gives the brute-force closest facet (same index, same distance) on 2000 points", m->nf, smooth ? "smoothed" : "raw");
     TU_CHECK(hint_same, "facets sphere (%s): ToolProjectHint from a random facet gives ToolProject's result bit for bit", smooth ? "smoothed" : "raw");
+    TU_CHECK(nbad == 0, "facets sphere (%s): every hierarchy node's lower bound (box and oriented box) is below the distance of each of its facets at 200 points from 0.7 to 1.3 R (%d violations)", smooth ? "smoothed" : "raw", nbad);
     TU_CHECK(smooth ? (egap < 2e-3 && en < 1e-2) : (egap < 2.5e-2 && en < 0.15), "facets sphere (%s): gap within %.2e of the sphere's, normal within %.2e", smooth ? "smoothed" : "raw", egap, en);
     TU_CHECK(chord > 1e-4, "facets sphere (%s): the frame chord (xi + 0.01, eta) stays on the facet, length >= %.2e", smooth ? "smoothed" : "raw", chord);
     if (smooth) TU_CHECK(edn < 1e-6 && nfd < 30, "facets sphere dn/dy against central differences of the projected normal: max error %.2e (%d edge-held points differenced by the caller)", edn, nfd);

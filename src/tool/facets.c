@@ -235,14 +235,32 @@ static inline double BoxDist2(const FacetsNode *n, const double y[3])
 {
   double s = 0.0;
   for (int i = 0; i < 3; i++) {
-    const double o = fmax((double)n->lo[i] - y[i], y[i] - (double)n->hi[i]);
-    if (o > 0.0) s += o * o;
+    const double l = (double)n->lo[i] - y[i], h = y[i] - (double)n->hi[i];
+    if (l > 0.0) s += l * l;
+    else if (h > 0.0) s += h * h;
   }
   return s;
 }
 
-/* the closest facet (smallest squared distance, then the smallest index) among those closer than
-   b on entry; b unchanged if none */
+/* A lower bound of the squared distance from y to the facets of node n: the larger of the box's and
+   the oriented box's. The oriented box's axes are float-rounded unit vectors, orthogonal to about
+   1e-7: the sum of the squared components along them is at most (1 + 1e-6) |y - x|^2, so the sum
+   times (1 - 1e-5) bounds |y - x|^2 from below (pruning stays exact, ties included) */
+static inline double NodeDist2(const FacetsNode *n, const double y[3])
+{
+  double a[3][3], s = 0.0;
+  const double b = BoxDist2(n, y);
+  FacetsNodeAxes(n, a);
+  for (int j = 0; j < 3; j++) {
+    const double d = a[j][0] * y[0] + a[j][1] * y[1] + a[j][2] * y[2];
+    const double l = (double)n->olo[j] - d, h = d - (double)n->ohi[j];
+    if (l > 0.0) s += l * l;
+    else if (h > 0.0) s += h * h;
+  }
+  s *= 1.0 - 1e-5;
+  return s > b ? s : b;
+}
+
 /* the closest facet (smallest squared distance, then the smallest index) among those closer than
    b on entry; b unchanged if none. With list (smoothed surfaces): also every facet within
    sqrt(b) + 2 dev of y (a superset: filtered by FacetsFinish), at most 256 */
@@ -258,7 +276,7 @@ static void TreeClosestCollect(const FacetsData *m, const double y[3], Best *b, 
   stack[ns++] = 0;
   while (ns) {
     const FacetsNode *n = &m->node[stack[--ns]];
-    if (BoxDist2(n, y) > R2) continue;
+    if (NodeDist2(n, y) > R2) continue;
     if (n->count > 0) {
       for (int k = n->first; k < n->first + n->count; k++) {
         double       u, v;
@@ -277,7 +295,7 @@ static void TreeClosestCollect(const FacetsData *m, const double y[3], Best *b, 
       }
     } else {
       const int    l = n->first, r = n->first + 1;
-      const double dl = BoxDist2(&m->node[l], y), dr = BoxDist2(&m->node[r], y);
+      const double dl = NodeDist2(&m->node[l], y), dr = NodeDist2(&m->node[r], y);
       if (dl <= dr) { /* the nearer child is popped first */
         if (dr <= R2 && ns < 128) stack[ns++] = r;
         if (dl <= R2 && ns < 128) stack[ns++] = l;
@@ -1187,6 +1205,37 @@ int FacetsTreeClosest(const Patch *p, const double y[3], double *d2)
   TreeClosest(m, y, &b);
   *d2 = b.d2;
   return b.f;
+}
+
+/* for the tests: the number of hierarchy nodes whose lower bound (NodeDist2) exceeds the squared
+   distance from y to one of their facets (0: every bound holds at y), and the smallest margin
+   (facet distance minus bound, squared distances) over the nodes */
+static double SubtreeMin2(const FacetsData *m, int k, const double y[3])
+{
+  const FacetsNode *n = &m->node[k];
+  double            d = HUGE_VAL;
+  if (n->count > 0) {
+    for (int f = n->first; f < n->first + n->count; f++) {
+      double u, v;
+      int    reg;
+      d = fmin(d, TriClosest(m, f, y, &u, &v, &reg));
+    }
+    return d;
+  }
+  return fmin(SubtreeMin2(m, n->first, y), SubtreeMin2(m, n->first + 1, y));
+}
+
+int FacetsCheckNodeBounds(const Patch *p, const double y[3], double *margin)
+{
+  const FacetsData *m   = (const FacetsData *)p->data;
+  int               bad = 0;
+  *margin               = HUGE_VAL;
+  for (int k = 0; k < m->nnode; k++) {
+    const double d = SubtreeMin2(m, k, y), b = NodeDist2(&m->node[k], y);
+    if (b > d) bad++;
+    *margin = fmin(*margin, d - b);
+  }
+  return bad;
 }
 
 void FacetsEvalLocal(const FacetsData *m, int f, double u, double v, double x[3], double xu[3], double xv[3], double *xuu, double *xuv, double *xvv) { FacetEvalLocal(m, f, u, v, x, xu, xv, xuu, xuv, xvv); }

@@ -3,12 +3,29 @@
 #define ATRITO_FACETS_H
 #include "toolimpl.h"
 
-/* a node of the bounding-volume hierarchy: a box (rounded outwards to float); a leaf holds the
-   facets first .. first+count-1, an inner node (count 0) its children first and first+1 */
+/* a node of the bounding-volume hierarchy: a box (rounded outwards to float) and an oriented box
+   (axes n, the facets' mean normal, and t1 perpendicular to it, t2 = n x t1 in double; olo/ohi the
+   extents of the facets' vertices along n, t1, t2 with these float axes, rounded outwards: thin
+   along n for a patch of a smooth surface, so that the nodes beside a point's foot are pruned,
+   which the axis-aligned box of a tilted patch cannot do); a leaf holds the facets first ..
+   first+count-1, an inner node (count 0) its children first and first+1 */
 typedef struct {
   float lo[3], hi[3];
+  float n[3], t1[3], olo[3], ohi[3];
   int   first, count;
 } FacetsNode;
+
+/* the third axis of a node's oriented box, t2 = n x t1 (the same arithmetic at build and query) */
+static inline void FacetsNodeAxes(const FacetsNode *nd, double a[3][3])
+{
+  for (int i = 0; i < 3; i++) {
+    a[0][i] = (double)nd->n[i];
+    a[1][i] = (double)nd->t1[i];
+  }
+  a[2][0] = a[0][1] * a[1][2] - a[0][2] * a[1][1];
+  a[2][1] = a[0][2] * a[1][0] - a[0][0] * a[1][2];
+  a[2][2] = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+}
 
 /* a cell of the bucket grid: its key (the packed cell indices) and its facets glist[start .. start+count-1] */
 typedef struct {
@@ -77,6 +94,7 @@ void FacetsEvalLocal(const FacetsData *m, int f, double u, double v, double x[3]
 /* for the tests: the closest facet by brute force and by the hierarchy (squared distance) */
 int FacetsBruteClosest(const Patch *p, const double y[3], double *d2);
 int FacetsTreeClosest(const Patch *p, const double y[3], double *d2);
+int FacetsCheckNodeBounds(const Patch *p, const double y[3], double *margin);
 void FacetsEncodeForTest(int f, double u, double v, double *xi, double *eta);
 /* for the tests: the distance of two triangles (squared), a facet's clearance and star, and
    whether the star of facet f alone decides the projection of y (the local certificate) */

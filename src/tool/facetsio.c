@@ -772,6 +772,57 @@ static void Select(const double *c, int *perm, int lo, int hi, int k, int ax)
   }
 }
 
+/* The oriented box of facets perm[lo..hi): n the sum of the facets' area vectors normalised (any
+   unit vector when they cancel, as for a closed surface: the box is then valid, only not thin), t1
+   the coordinate axis least along n made perpendicular to it; both rounded to float, and the
+   extents computed with the rounded axes (FacetsNodeAxes), so that every vertex, and with it every
+   point of the plane triangles (convex combinations), lies inside [olo, ohi] along them */
+static void OrientedBox(Builder *B, FacetsNode *n, int lo, int hi)
+{
+  double s[3] = {0, 0, 0}, a[3][3], e[3] = {0, 0, 0}, len, t[3], elo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, ehi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  int    m = 0;
+  for (int k = lo; k < hi; k++) {
+    const int     f = B->perm[k];
+    const double *p = B->V + 3 * B->F[3 * f], *q = B->V + 3 * B->F[3 * f + 1], *r = B->V + 3 * B->F[3 * f + 2];
+    const double  u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    s[0] += u[1] * v[2] - u[2] * v[1];
+    s[1] += u[2] * v[0] - u[0] * v[2];
+    s[2] += u[0] * v[1] - u[1] * v[0];
+  }
+  len = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+  if (!(len > 0)) {
+    s[0] = 0, s[1] = 0, s[2] = 1;
+    len  = 1;
+  }
+  for (int i = 0; i < 3; i++) s[i] /= len;
+  for (int i = 1; i < 3; i++)
+    if (fabs(s[i]) < fabs(s[m])) m = i;
+  e[m] = 1;
+  for (int i = 0; i < 3; i++) t[i] = e[i] - s[m] * s[i];
+  len = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+  for (int i = 0; i < 3; i++) {
+    n->n[i]  = (float)s[i];
+    n->t1[i] = (float)(t[i] / len);
+  }
+  FacetsNodeAxes(n, a);
+  for (int k = lo; k < hi; k++)
+    for (int c = 0; c < 3; c++) {
+      const double *x = B->V + 3 * B->F[3 * B->perm[k] + c];
+      for (int j = 0; j < 3; j++) {
+        const double d = a[j][0] * x[0] + a[j][1] * x[1] + a[j][2] * x[2];
+        elo[j]         = fmin(elo[j], d);
+        ehi[j]         = fmax(ehi[j], d);
+      }
+    }
+  for (int j = 0; j < 3; j++) { /* outwards by one float step beyond the rounding */
+    float l = (float)elo[j], h = (float)ehi[j];
+    if ((double)l >= elo[j]) l = nextafterf(l, -HUGE_VALF);
+    if ((double)h <= ehi[j]) h = nextafterf(h, HUGE_VALF);
+    n->olo[j] = l;
+    n->ohi[j] = h;
+  }
+}
+
 static void Build(Builder *B, int me, int lo, int hi)
 {
   FacetsNode *n = &B->node[me];
@@ -796,6 +847,7 @@ static void Build(Builder *B, int me, int lo, int hi)
     n->lo[i] = l;
     n->hi[i] = h;
   }
+  OrientedBox(B, n, lo, hi);
   if (hi - lo <= 4) {
     n->first = lo;
     n->count = hi - lo;
