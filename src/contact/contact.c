@@ -1003,6 +1003,10 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
   return 0;
 }
 
+/* a force-driven direction whose contacts' stiffness (the diagonal of the tool's block) is at most
+   this fraction of the tool's regularising stiffness has none: it is regularised (ContactAssemble) */
+#define TOOL_STIFF_MIN 1e-8
+
 /* Tools driven by force: the coupling with the tool unknowns.
 
    A tool T with unknowns has the displacement d (3 components; along a force-driven direction the
@@ -1027,14 +1031,11 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
    Along a direction that is not force-driven the row is r_k = d_k - (prescribed displacement):
    an identity row. While no node paired with the tool is in contact (the rows above vanish), the
    diagonal of the force-driven rows is the regularising stiffness kreg (the sum of the penalties
-   K_N of the tool's nodes), and while the target presses the tool onto the body the force row
-   holds the penalty law continued across the nearest node's gap (ContactToolResidual): Newton
-   closes the gap without a singular matrix; a converged state has contact (or a zero target), so
-   its residual, and the equilibrium, are exact (doc/contact.md). */
-/* a force-driven direction whose contacts' stiffness (the diagonal of the tool's block) is at most
-   this fraction of the tool's regularising stiffness has none: it is regularised (ContactAssemble) */
-#define TOOL_STIFF_MIN 1e-8
-
+   K_N of the tool's nodes; so is that of a direction its contacts give no stiffness, below), and
+   while the target presses the tool onto the body the force row holds the penalty law continued
+   across the nearest node's gap (ContactToolResidual): Newton closes the gap without a singular
+   matrix; a converged state has contact (or a zero target), so its residual, and the
+   equilibrium, are exact (doc/contact.md). */
 PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v, PetscInt *nfail_out)
 {
   PetscInt     nfail = 0;
