@@ -2,7 +2,8 @@
    rigid plane whose z displacement is an unknown (-tool_plane_force_z), with friction (slip):
    the coupling blocks of the Jacobian (node rows x tool columns, tool row x node and tool columns)
    against central differences of the residual; the tool's residual row against its closed form;
-   the regularisation of a tool out of contact (its row's stiffness and residual); the drive switches of ContactSetToolDrive and the
+   the regularisation of a tool out of contact (its row's stiffness and residual) and of a force-driven
+   direction whose contacts all slip along it (no stiffness); the drive switches of ContactSetToolDrive and the
    kinks of ContactNextKink. Runs on 1 and 2 ranks. */
 #include <petscmat.h>
 #include "testutil.h"
@@ -230,6 +231,41 @@ int main(int argc, char **argv)
       const PetscReal expect = -9 * KN * (0.1 - 0.014) - 4;
       CHECK_ALL(PetscAbsReal(r[2] - expect) < 1e-12 * PetscAbsReal(expect), "out of contact, within the search distance: the tool's row is -k_reg g_min minus the target, %g (got %g)", (double)expect, (double)r[2]);
     }
+  }
+
+  /* 3b. a force-driven direction whose contacts give it no stiffness: every node slips along x on
+         the plane (the slip tangent has none along the slip, the plane's normal none along x), so
+         the tool's x column is zero and the diagonal would be a zero pivot; it is the regularising
+         stiffness 9 K_N instead, and the residual row is still the force minus the target. With
+         the nodes sticking the diagonal is exactly their stiffness, K_T each. */
+  {
+    LoadCurve       cv;
+    const PetscReal t[2] = {0, 1}, val[2] = {1, 1};
+    PetscReal       J00 = 0, fx = 0, Jxz = 0, d1[3] = {0, 0, d[2]};
+    PetscCall(LoadCurveCreate(PETSC_COMM_WORLD, "test", 2, t, val, &cv));
+    PetscCall(ContactSetToolDrive(s.c, 0, 0, TOOL_DRIVE_FORCE, &cv));
+    PetscCall(LoadCurveDestroy(&cv));
+    PetscCall(Residual(&s, u, d, lam, f, r));
+    PetscCall(Jacobian(&s, u, d, lam));
+    if (rank == size - 1) {
+      J00 = Entry(s.J, s.nbody, s.nbody);
+      Jxz = Entry(s.J, s.nbody, s.nbody + 2);
+    }
+    for (PetscInt v = 0; v < s.m.nv; v++)
+      if (s.m.vowned[v] && s.m.X[3 * v + 2] == 0) fx -= PetscRealPart(f[s.m.vloff[v]]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &fx, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &J00, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &Jxz, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+    CHECK_ALL(J00 == 9 * KN && PetscAbsReal(r[0] - (fx - 1)) < 1e-12 * PetscAbsReal(fx) && PetscAbsReal(fx) > 0.2 && Jxz != 0, "x driven by force, every node slipping along x: the x diagonal is the regularising stiffness %g (got %g; the contacts give it none), the coupling with z (friction) kept (%g), the row the force %g minus the target 1 (got %g)", 9 * KN, (double)J00, (double)Jxz, (double)fx, (double)r[0]);
+    Displace(&s.m, u, 0.01, 1e-3); /* stick: K_T x 2e-3 < mu t_N */
+    PetscCall(Residual(&s, u, d1, lam, f, r));
+    PetscCall(Jacobian(&s, u, d1, lam));
+    J00 = 0;
+    if (rank == size - 1) J00 = Entry(s.J, s.nbody, s.nbody);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &J00, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+    CHECK_ALL(PetscAbsReal(J00 - 9 * 10.0) < 1e-12 * 90, "x driven by force, every node sticking: the x diagonal is the contacts' stiffness 9 K_T = 90 (got %.15g)", (double)J00);
+    PetscCall(ContactSetToolDrive(s.c, 0, 0, TOOL_DRIVE_DISPLACEMENT, NULL));
+    Displace(&s.m, u, 0.01, 0.05);
   }
 
   /* 4. drive switches: to displacement the tool holds its committed position; back to force the

@@ -1003,6 +1003,10 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
   return 0;
 }
 
+/* a force-driven direction whose contacts' stiffness (the diagonal of the tool's block) is at most
+   this fraction of the tool's regularising stiffness has none: it is regularised (ContactAssemble) */
+#define TOOL_STIFF_MIN 1e-8
+
 /* Tools driven by force: the coupling with the tool unknowns.
 
    A tool T with unknowns has the displacement d (3 components; along a force-driven direction the
@@ -1027,10 +1031,11 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
    Along a direction that is not force-driven the row is r_k = d_k - (prescribed displacement):
    an identity row. While no node paired with the tool is in contact (the rows above vanish), the
    diagonal of the force-driven rows is the regularising stiffness kreg (the sum of the penalties
-   K_N of the tool's nodes), and while the target presses the tool onto the body the force row
-   holds the penalty law continued across the nearest node's gap (ContactToolResidual): Newton
-   closes the gap without a singular matrix; a converged state has contact (or a zero target), so
-   its residual, and the equilibrium, are exact (doc/contact.md). */
+   K_N of the tool's nodes; so is that of a direction its contacts give no stiffness, below), and
+   while the target presses the tool onto the body the force row holds the penalty law continued
+   across the nearest node's gap (ContactToolResidual): Newton closes the gap without a singular
+   matrix; a converged state has contact (or a zero target), so its residual, and the
+   equilibrium, are exact (doc/contact.md). */
 PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal lambda, PetscScalar *f, Mat J, PetscScalar *coo_v, PetscInt *nfail_out)
 {
   PetscInt     nfail = 0;
@@ -1105,8 +1110,21 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
   }
   if (nb && J) {
     /* the tool x tool blocks: this rank's sums; on the owner the identity of the directions that
-       are not force-driven and the regularisation of a tool out of contact */
+       are not force-driven and the regularisation of a force-driven direction without stiffness:
+       no node in contact, or (kdiag, every rank's sum of the diagonal) contacts that give it none.
+       The latter are contacts that slip along that direction (the slip tangent K_T mu t_N/|t_T^e|
+       (I - e e^T) has no stiffness along e, and on a face parallel to it the normal gives none:
+       exactly zero for a sheet in plane strain sliding on a flat die) or carry a vanishing normal
+       force (-contact_gap_smoothing: the stiffness K_N dt_N/dx -> 0 at the band's lower end). The
+       column of the tool's unknown is then zero, and so the pivot. The residual is not changed:
+       the direction holds its position for the iteration, and the converged state, where the
+       regularisation is inactive or the force is met anyway, is the exact equilibrium. */
+    PetscReal *kdiag;
+    PetscCall(PetscCalloc1(3 * nb, &kdiag));
+    for (PetscInt b = 0; b < nb; b++)
+      for (int k = 0; k < 3; k++) kdiag[3 * b + k] = PetscRealPart(kt[9 * b + 4 * k]);
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, nact, (PetscMPIInt)nb, MPIU_INT, MPI_SUM, contact->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, kdiag, (PetscMPIInt)(3 * nb), MPIU_REAL, MPI_SUM, contact->comm));
     for (PetscInt t = 0; t < nt; t++) {
       const ToolContact *tc = &contact->tc[t];
       PetscScalar       *E;
@@ -1114,14 +1132,16 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
       if (tc->block < 0) continue;
       E = kt + 9 * tc->block;
       for (int k = 0; k < 3; k++) {
+        const PetscBool stiff = (nact[tc->block] && kdiag[3 * tc->block + k] > TOOL_STIFF_MIN * tc->kreg) ? PETSC_TRUE : PETSC_FALSE;
         td[k] = contact->tdof0 + 3 * tc->block + k;
-        if (contact->towner) E[4 * k] += tc->drive[k] == TOOL_DRIVE_FORCE ? (nact[tc->block] ? 0 : tc->kreg) : 1;
+        if (contact->towner) E[4 * k] += tc->drive[k] == TOOL_DRIVE_FORCE ? (stiff ? 0 : tc->kreg) : 1;
       }
       if (coo_v) {
         for (int k = 0; k < 9; k++) *coo_v++ = E[k];
       } else PetscCall(MatSetValues(J, 3, td, 3, td, E, ADD_VALUES));
     }
     PetscCall(PetscFree2(kt, nact));
+    PetscCall(PetscFree(kdiag));
   }
   *nfail_out = nfail;
   PetscCall(PetscLogEventEnd(contact->ev_contact, 0, 0, 0, 0));
