@@ -492,7 +492,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   c->aug_tol_rel = -1;
   c->aug_mtol    = 0.1;
   c->aug_max     = 20;
-  c->aug_grow    = 4;
+  c->aug_grow    = 8;
   c->aug_grow_max = 1e3;
   c->kscale      = 1;
   c->kscale_c    = 1;
@@ -505,11 +505,11 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     PetscCall(PetscOptionsReal("-contact_augmented_tol_relative", "Augmented Lagrangian: the tolerance as a fraction of the smallest element size normal to the contact faces (with -contact_augmented_tol: the smaller of the two)", NULL, c->aug_tol_rel, &c->aug_tol_rel, &sr));
     PetscCall(PetscOptionsReal("-contact_augmented_multiplier_tol", "Augmented Lagrangian: largest change of a nodal multiplier accepted, relative to the largest multiplier", NULL, c->aug_mtol, &c->aug_mtol, &sm));
     PetscCall(PetscOptionsInt("-contact_augmented_max", "Augmented Lagrangian: Newton solves (multiplier updates) allowed per load step", NULL, c->aug_max, &c->aug_max, &sx));
-    PetscCall(PetscOptionsReal("-contact_augmented_growth", "Augmented Lagrangian: factor on the penalties (for the rest of the step) after an update that did not reduce the largest penetration by 4 (1: never)", NULL, c->aug_grow, &c->aug_grow, NULL));
+    PetscCall(PetscOptionsReal("-contact_augmented_growth", "Augmented Lagrangian: factor on the penalties (for the rest of the step, and with -contact_augmented_growth_keep the next steps) after an update that did not reduce the largest penetration by 4 (1: never)", NULL, c->aug_grow, &c->aug_grow, NULL));
     PetscCall(PetscOptionsBool("-contact_augmented_growth_keep", "Augmented Lagrangian: the penalties' growth carries over to the next steps (false: every step starts from the penalties as given)", NULL, c->aug_keep, &c->aug_keep, NULL));
     PetscCall(PetscOptionsReal("-contact_augmented_inexact", "Augmented Lagrangian: the multipliers are updated as soon as |R| is below this fraction of the step's initial residual; the step ends with a fully converged solve at the final multipliers (0: every solve fully converged)", NULL, c->aug_inexact, &c->aug_inexact, NULL));
     PetscCheck(c->aug_inexact >= 0 && c->aug_inexact < 1, comm, PETSC_ERR_USER_INPUT, "-contact_augmented_inexact %g must lie in [0, 1)", (double)c->aug_inexact);
-    PetscCall(PetscOptionsReal("-contact_augmented_growth_max", "Augmented Lagrangian: largest factor the penalties grow by within a step", NULL, c->aug_grow_max, &c->aug_grow_max, NULL));
+    PetscCall(PetscOptionsReal("-contact_augmented_growth_max", "Augmented Lagrangian: largest factor the penalties grow by", NULL, c->aug_grow_max, &c->aug_grow_max, NULL));
     PetscCheck(c->aug_grow >= 1 && PetscIsNormalReal(c->aug_grow), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_growth %g must be >= 1", (double)c->aug_grow);
     PetscCheck(c->aug_grow_max >= 1 && PetscIsNormalReal(c->aug_grow_max), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_growth_max %g must be >= 1", (double)c->aug_grow_max);
     PetscCheck(!sa || (c->aug_tol > 0 && PetscIsNormalReal(c->aug_tol)), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_tol %g must be positive", (double)c->aug_tol);
@@ -1329,7 +1329,7 @@ PetscInt  ContactAugmentedMax(Contact contact) { return contact->aug_max; }
    predictor lT + K_T dg_T (= t_T); converged when the largest penetration of a pressed node and the
    largest stick slip of the step (|change of lT|/K_T at a sticking node) are below the tolerance
    and no multiplier changed by more than -contact_augmented_multiplier_tol times the largest. */
-PetscErrorCode ContactAugment(Contact contact, PetscBool hold, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda)
+PetscErrorCode ContactAugment(Contact contact, PetscBool inexact, PetscBool *converged, PetscBool *held, PetscReal *maxpen, PetscReal *dlambda)
 {
   PetscReal loc[4] = {0, 0, 0, 0}, gl[4]; /* penetration, stick slip, change, largest multiplier */
   PetscReal dot[4] = {0, 0, 0, 0}, gdot[4], omega[2] = {1, 1};
@@ -1367,16 +1367,18 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool hold, PetscBool *conver
      omega = -omega_prev r_prev.(r - r_prev)/|r - r_prev|^2, kept in [1, 100]; one factor for the
      normal multipliers, one for the tangential ones (their rates differ: K_N against K_T) */
   conv = (gl[0] <= contact->tol && gl[1] <= contact->tol && gl[2] <= contact->aug_mtol * gl[3]) ? PETSC_TRUE : PETSC_FALSE;
-  if (hold && conv) {
-    /* converged at an inexact solve: the multipliers stay, the solve is completed at them and
-       checked again (the relaxation starts again should it not be converged then) */
+  *held = (inexact && gl[0] <= contact->tol && gl[1] <= contact->tol) ? PETSC_TRUE : PETSC_FALSE;
+  if (*held) {
+    /* an inexact solve whose penetration and stick slip are below the tolerance: the multipliers
+       stay, the solve is completed at them and checked again (an update that is still needed then
+       is made from the converged state; the relaxation starts again) */
     for (PetscInt i = 0; i < 3 * contact->ns; i++) contact->lam_r[i] = 0;
     contact->omega[0] = contact->omega[1] = 1;
     contact->aug_pen  = gl[0];
     contact->aug_dlam = gl[2];
     *maxpen           = gl[0];
     *dlambda          = gl[2];
-    *converged        = PETSC_TRUE;
+    *converged        = conv;
     PetscFunctionReturn(0);
   }
   for (int k = 0; k < 2; k++)

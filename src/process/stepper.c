@@ -434,7 +434,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
          updated after each (ContactAugment) until the penetration is below the tolerance */
       for (;;) {
         PetscInt  its1;
-        PetscBool aconv = PETSC_FALSE;
+        PetscBool aconv = PETSC_FALSE, held = PETSC_FALSE;
         if (aug && (st->aug_loops > 0 || inexact)) {
           /* the later solves of the step are converged to the accuracy the first one reached: |R|
              below rtol times the first solve's initial residual r0 (or their own rtol); with
@@ -467,12 +467,12 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         }
         if (reason <= 0 || !aug) break;
         st->aug_loops++;
-        PetscCall(ContactAugment(pb->contact, inexact, &aconv, &st->aug_pen, &st->aug_dlam));
-        if (aconv && !inexact) break;
-        /* converged at an inexact solve: ContactAugment held the multipliers; the solve is
-           completed at them (fully converged) and its penetration and multiplier change checked
-           again */
-        if (aconv) inexact = PETSC_FALSE;
+        PetscCall(ContactAugment(pb->contact, inexact, &aconv, &held, &st->aug_pen, &st->aug_dlam));
+        /* an inexact solve that met the penetration tolerance: ContactAugment held the
+           multipliers; the solve is completed at them (fully converged) and checked again, and the
+           rest of the step's solves are exact */
+        if (held) inexact = PETSC_FALSE;
+        else if (aconv) break;
         if (st->aug_loops >= ContactAugmentedMax(pb->contact)) {
           reason         = SNES_DIVERGED_INNER; /* reported below as the augmentation's failure */
           st->aug_failed = PETSC_TRUE;
