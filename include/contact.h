@@ -115,7 +115,12 @@ PetscErrorCode ContactCommit(Contact c, PetscReal lambda);
    every retry from the committed ones (ContactSeed from_committed) and are committed with it. */
 PetscBool      ContactAugmented(Contact c);
 PetscInt       ContactAugmentedMax(Contact c);
-PetscErrorCode ContactAugment(Contact c, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda);
+PetscErrorCode ContactAugment(Contact c, PetscBool inexact, PetscBool *converged, PetscBool *held, PetscReal *maxpen, PetscReal *dlambda);
+/* the start of a step's augmentation, after ContactSeed from the committed state: the penalties'
+   factor the step starts from (the committed one with -contact_augmented_growth_keep), and the
+   relative residual eta at which a solve is followed by an update (-contact_augmented_inexact; 0:
+   every solve fully converged, and always 0 without augmentation) */
+PetscErrorCode ContactAugmentStart(Contact c, PetscReal *inexact);
 PetscErrorCode ContactAugmentTolerances(Contact c, PetscReal *tol, PetscReal *mtol);
 /* the contact status and normal force of every slave node at the current iterate */
 PetscErrorCode ContactRecordActive(Contact c);

@@ -68,3 +68,33 @@ atrito 1 auto -options_file cases/hemisphere_frictionless.opts -output_interval 
 atrito 1 stiff -options_file cases/block_plane_drag.opts -output_interval 0 -material_E 2e5 -contact_penalty_normal auto -contact_penalty_tangential auto -contact_augmented -contact_augmented_tol 1e-5 &&
   pycheck auglag_drag "$OUT/stiff" 0.3 1e-5 25 "stiff block, E = 2e5, automatic penalty" &&
   $PY -c "import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); print('    Newton iterations per step', [int(x['newton_its']) for x in r], 'solves', [int(x['augmentations']) for x in r])" "$OUT/stiff/contact.csv"
+
+# 8. the seed hemisphere at a soft penalty (K_N 1e3), where the penalties grow and the growth carries
+#    over to the next steps (-contact_augmented_growth_keep, in the checkpoint) and the solves that an
+#    update follows are inexact (-contact_augmented_inexact): the punch force within 0.2 % of the
+#    stiff run's (K_N 1e5), the penetration below the tolerance at every step; a run stopped and
+#    restarted repeats the uninterrupted one (10 digits), and 2 ranks repeat 1 rank (8 digits)
+HEM="-options_file cases/hemisphere_frictionless.opts -output_interval 0 -contact_augmented -contact_augmented_tol 1e-3"
+# shellcheck disable=SC2086
+atrito 1 hsoft $HEM -contact_penalty_normal 1e3
+# shellcheck disable=SC2086
+atrito 1 hstiff $HEM -contact_penalty_normal 1e5
+$PY - "$OUT/hsoft/contact.csv" "$OUT/hstiff/contact.csv" <<'PY' && ok "$(cat "$OUT/hcheck.txt")" || not_ok "$(cat "$OUT/hcheck.txt" 2>/dev/null)"
+import csv, sys, os
+rows = [[x for x in csv.DictReader(open(f)) if x["tool"] == "punch"] for f in sys.argv[1:3]]
+fs, fk = float(rows[0][-1]["force"]), float(rows[1][-1]["force"])
+pen = max(float(x["max_penetration"]) for r in rows for x in r)
+d = abs(fs / fk - 1)
+msg = f"augmented hemisphere, K_N 1e3 against 1e5: punch force {fs:.2f} and {fk:.2f} N ({100 * d:.3f} %), largest penetration {pen:.2e} (tolerance 1e-3), Newton iterations {sum(int(x['newton_its']) for x in rows[0])} and {sum(int(x['newton_its']) for x in rows[1])}"
+open(os.path.join(os.path.dirname(os.path.dirname(sys.argv[1])), "hcheck.txt"), "w").write(msg)
+sys.exit(0 if d < 2e-3 and pen <= 1e-3 else 1)
+PY
+# shellcheck disable=SC2086
+atrito 2 hsoft2 $HEM -contact_penalty_normal 1e3
+compare "$OUT/hsoft/contact.csv" "$OUT/hsoft2/contact.csv" 8 "augmented hemisphere, K_N 1e3: contact history at np=1 and np=2"
+# shellcheck disable=SC2086
+atrito_rc 1 hstop $HEM -contact_penalty_normal 1e3 -checkpoint_interval 4 -load_max_steps 10
+# shellcheck disable=SC2086
+if $MPI 1 $A $HEM -contact_penalty_normal 1e3 -output_dir "$OUT/hstop" -restart "$OUT/hstop/checkpoint.h5" >"$OUT/hstop2.log" 2>&1 </dev/null; then
+  compare "$OUT/hsoft/contact.csv" "$OUT/hstop/contact.csv" 10 "augmented hemisphere, K_N 1e3, stopped at step 10 and restarted from step 8 (np=1): contact.csv"
+else not_ok "augmented hemisphere restart failed"; tail -n 5 "$OUT/hstop2.log" | indent; fi

@@ -107,6 +107,9 @@ struct _p_Contact {
   PetscReal     omega[2];      /* the previous relaxation factors (normal, tangential)        */
   PetscReal     kscale;        /* the penalties' factor in the current step (augmentation's growth) */
   PetscReal     aug_grow, aug_grow_max; /* -contact_augmented_growth, _growth_max               */
+  PetscBool     aug_keep;      /* -contact_augmented_growth_keep: the grown factor carries over  */
+  PetscReal     kscale_c;      /* the factor committed with the last step (the next one starts from it) */
+  PetscReal     aug_inexact;   /* -contact_augmented_inexact: relative residual at which a solve is followed by an update (0: exact solves) */
   /* per-tool settings and drives, the tool unknowns */
   ToolContact  *tc;            /* ntools                                                      */
   char         *tmask;         /* ns*ntools: node i may pair with tool t (it is in the tool's sets) */
@@ -489,9 +492,12 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   c->aug_tol_rel = -1;
   c->aug_mtol    = 0.1;
   c->aug_max     = 20;
-  c->aug_grow    = 4;
+  c->aug_grow    = 8;
   c->aug_grow_max = 1e3;
   c->kscale      = 1;
+  c->kscale_c    = 1;
+  c->aug_keep    = PETSC_TRUE;
+  c->aug_inexact = 1e-3;
   PetscCall(PetscOptionsBool("-contact_augmented", "Augmented Lagrangian: Uzawa updates of the nodal multipliers between Newton solves until the penetration is below the tolerance", NULL, c->aug, &c->aug, NULL));
   {
     PetscBool sa, sr, sm, sx;
@@ -499,8 +505,11 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     PetscCall(PetscOptionsReal("-contact_augmented_tol_relative", "Augmented Lagrangian: the tolerance as a fraction of the smallest element size normal to the contact faces (with -contact_augmented_tol: the smaller of the two)", NULL, c->aug_tol_rel, &c->aug_tol_rel, &sr));
     PetscCall(PetscOptionsReal("-contact_augmented_multiplier_tol", "Augmented Lagrangian: largest change of a nodal multiplier accepted, relative to the largest multiplier", NULL, c->aug_mtol, &c->aug_mtol, &sm));
     PetscCall(PetscOptionsInt("-contact_augmented_max", "Augmented Lagrangian: Newton solves (multiplier updates) allowed per load step", NULL, c->aug_max, &c->aug_max, &sx));
-    PetscCall(PetscOptionsReal("-contact_augmented_growth", "Augmented Lagrangian: factor on the penalties (for the rest of the step) after an update that did not reduce the largest penetration by 4 (1: never)", NULL, c->aug_grow, &c->aug_grow, NULL));
-    PetscCall(PetscOptionsReal("-contact_augmented_growth_max", "Augmented Lagrangian: largest factor the penalties grow by within a step", NULL, c->aug_grow_max, &c->aug_grow_max, NULL));
+    PetscCall(PetscOptionsReal("-contact_augmented_growth", "Augmented Lagrangian: factor on the penalties (for the rest of the step, and with -contact_augmented_growth_keep the next steps) after an update that did not reduce the largest penetration by 4 (1: never)", NULL, c->aug_grow, &c->aug_grow, NULL));
+    PetscCall(PetscOptionsBool("-contact_augmented_growth_keep", "Augmented Lagrangian: the penalties' growth carries over to the next steps (false: every step starts from the penalties as given)", NULL, c->aug_keep, &c->aug_keep, NULL));
+    PetscCall(PetscOptionsReal("-contact_augmented_inexact", "Augmented Lagrangian: the multipliers are updated as soon as |R| is below this fraction of the step's initial residual; the step ends with a fully converged solve at the final multipliers (0: every solve fully converged)", NULL, c->aug_inexact, &c->aug_inexact, NULL));
+    PetscCheck(c->aug_inexact >= 0 && c->aug_inexact < 1, comm, PETSC_ERR_USER_INPUT, "-contact_augmented_inexact %g must lie in [0, 1)", (double)c->aug_inexact);
+    PetscCall(PetscOptionsReal("-contact_augmented_growth_max", "Augmented Lagrangian: largest factor the penalties grow by", NULL, c->aug_grow_max, &c->aug_grow_max, NULL));
     PetscCheck(c->aug_grow >= 1 && PetscIsNormalReal(c->aug_grow), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_growth %g must be >= 1", (double)c->aug_grow);
     PetscCheck(c->aug_grow_max >= 1 && PetscIsNormalReal(c->aug_grow_max), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_growth_max %g must be >= 1", (double)c->aug_grow_max);
     PetscCheck(!sa || (c->aug_tol > 0 && PetscIsNormalReal(c->aug_tol)), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_tol %g must be positive", (double)c->aug_tol);
@@ -1309,6 +1318,8 @@ PetscErrorCode ContactCommit(Contact contact, PetscReal lambda)
 {
   PetscFunctionBeginUser;
   if (contact->ns) PetscCall(PetscArraycpy(contact->cst_c, contact->cst_t, contact->ns));
+  /* the penalties' factor the next step starts from (-contact_augmented_growth_keep) */
+  if (contact->aug && contact->aug_keep) contact->kscale_c = contact->kscale;
   /* the tools' displacements: the solved ones along the force-driven directions */
   for (PetscInt t = 0; t < contact->ntools; t++) {
     ToolContact *tc = &contact->tc[t];
@@ -1338,10 +1349,11 @@ PetscInt  ContactAugmentedMax(Contact contact) { return contact->aug_max; }
    predictor lT + K_T dg_T (= t_T); converged when the largest penetration of a pressed node and the
    largest stick slip of the step (|change of lT|/K_T at a sticking node) are below the tolerance
    and no multiplier changed by more than -contact_augmented_multiplier_tol times the largest. */
-PetscErrorCode ContactAugment(Contact contact, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda)
+PetscErrorCode ContactAugment(Contact contact, PetscBool inexact, PetscBool *converged, PetscBool *held, PetscReal *maxpen, PetscReal *dlambda)
 {
   PetscReal loc[4] = {0, 0, 0, 0}, gl[4]; /* penetration, stick slip, change, largest multiplier */
   PetscReal dot[4] = {0, 0, 0, 0}, gdot[4], omega[2] = {1, 1};
+  PetscBool conv;
 
   PetscFunctionBeginUser;
   /* the Uzawa increments r = (t_N, t_T) - (lN, lT) at the solution */
@@ -1374,6 +1386,21 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool *converged, PetscReal *
      first update of a step is the plain Uzawa one, the later ones lambda + omega r with
      omega = -omega_prev r_prev.(r - r_prev)/|r - r_prev|^2, kept in [1, 100]; one factor for the
      normal multipliers, one for the tangential ones (their rates differ: K_N against K_T) */
+  conv = (gl[0] <= contact->tol && gl[1] <= contact->tol && gl[2] <= contact->aug_mtol * gl[3]) ? PETSC_TRUE : PETSC_FALSE;
+  *held = (inexact && gl[0] <= contact->tol && gl[1] <= contact->tol) ? PETSC_TRUE : PETSC_FALSE;
+  if (*held) {
+    /* an inexact solve whose penetration and stick slip are below the tolerance: the multipliers
+       stay, the solve is completed at them and checked again (an update that is still needed then
+       is made from the converged state; the relaxation starts again) */
+    for (PetscInt i = 0; i < 3 * contact->ns; i++) contact->lam_r[i] = 0;
+    contact->omega[0] = contact->omega[1] = 1;
+    contact->aug_pen  = gl[0];
+    contact->aug_dlam = gl[2];
+    *maxpen           = gl[0];
+    *dlambda          = gl[2];
+    *converged        = conv;
+    PetscFunctionReturn(0);
+  }
   for (int k = 0; k < 2; k++)
     if (contact->naug > 0 && gdot[2 * k + 1] > 0) omega[k] = PetscMin(PetscMax(-contact->omega[k] * gdot[2 * k] / gdot[2 * k + 1], 1.0), 100.0);
   for (PetscInt i = 0; i < contact->ns; i++) {
@@ -1411,7 +1438,18 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool *converged, PetscReal *
   contact->aug_dlam = gl[2];
   *maxpen      = gl[0];
   *dlambda     = gl[2];
-  *converged   = (gl[0] <= contact->tol && gl[1] <= contact->tol && gl[2] <= contact->aug_mtol * gl[3]) ? PETSC_TRUE : PETSC_FALSE;
+  *converged   = conv;
+  PetscFunctionReturn(0);
+}
+
+/* Start of a step's augmentation (after the frame seeds from the committed state, which reset the
+   multipliers to the committed ones and the penalties' factor to 1): the factor committed with the
+   last step (-contact_augmented_growth_keep), and the relative residual of the inexact solves. */
+PetscErrorCode ContactAugmentStart(Contact contact, PetscReal *inexact)
+{
+  PetscFunctionBeginUser;
+  *inexact = contact->aug ? contact->aug_inexact : 0;
+  if (contact->aug) contact->kscale = contact->aug_keep ? contact->kscale_c : 1;
   PetscFunctionReturn(0);
 }
 
@@ -1555,7 +1593,7 @@ PetscErrorCode ContactGetNodeFields(Contact contact, PetscReal *cg, PetscReal *c
   PetscFunctionReturn(0);
 }
 
-#define CKPT_NCS 27 /* doubles per vertex for the contact state (24 before the multipliers) */
+#define CKPT_NCS 28 /* doubles per vertex for the contact state (24 before the multipliers, 27 before the penalties' factor) */
 
 PetscInt ContactCheckpointWidth(void) { return CKPT_NCS; }
 
@@ -1565,7 +1603,7 @@ PetscErrorCode ContactCheckpointPack(Contact contact, PetscReal *rows)
   PetscCall(PetscArrayzero(rows, CKPT_NCS * contact->mesh->nvo));
   for (PetscInt i = 0; i < contact->ns; i++) {
     const ContactState *s = &contact->cst_c[i];
-    const PetscReal     v[CKPT_NCS] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip, s->lN, s->lT[0], s->lT[1]};
+    const PetscReal     v[CKPT_NCS] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip, s->lN, s->lT[0], s->lT[1], contact->kscale_c};
     PetscCall(PetscArraycpy(rows + CKPT_NCS * contact->mesh->vrow[contact->slave[i]], v, CKPT_NCS));
   }
   PetscFunctionReturn(0);
@@ -1573,7 +1611,8 @@ PetscErrorCode ContactCheckpointPack(Contact contact, PetscReal *rows)
 
 PetscErrorCode ContactCheckpointUnpack(Contact contact, const PetscReal *rows, PetscReal lambda, const char *path)
 {
-  PetscInt bad = PETSC_MAX_INT;
+  PetscInt  bad = PETSC_MAX_INT;
+  PetscReal kc  = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < contact->ns; i++) {
@@ -1603,8 +1642,13 @@ PetscErrorCode ContactCheckpointUnpack(Contact contact, const PetscReal *rows, P
     s->lN    = d[24];
     s->lT[0] = d[25];
     s->lT[1] = d[26];
+    kc       = PetscMax(kc, d[27]);
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, contact->comm));
+  /* the augmentation's penalty factor (the same in every slave node's row; a rank without slave
+     nodes takes it from the others) */
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &kc, 1, MPIU_REAL, MPIU_MAX, contact->comm));
+  contact->kscale_c = kc > 0 ? kc : 1;
   PetscCheck(bad == PETSC_MAX_INT, contact->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: node id %" PetscInt_FMT " is a slave node here but not in the checkpoint", path, bad);
   if (contact->ns) PetscCall(PetscArraycpy(contact->cst_t, contact->cst_c, contact->ns));
   contact->lambda_c = lambda;

@@ -423,14 +423,29 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       its_max         = 0;
       st->aug_failed  = PETSC_FALSE;
       st->aug_loops   = 0;
-      PetscReal atol0 = 0, rtol = 0, stol = 0;
+      PetscReal atol0 = 0, rtol = 0, stol = 0, eta = 0;
       PetscInt  maxit = 0, maxf = 0;
-      PetscBool tol_changed = PETSC_FALSE;
+      PetscBool tol_changed = PETSC_FALSE, inexact;
+      /* the start of the augmentation: the penalties' factor, the inexact solves' relative residual */
+      PetscCall(ContactAugmentStart(pb->contact, &eta));
+      inexact = (aug && eta > 0) ? PETSC_TRUE : PETSC_FALSE;
+      if (aug) PetscCall(SNESGetTolerances(snes, &atol0, &rtol, &stol, &maxit, &maxf));
       /* Newton solves at fixed contact multipliers; with -contact_augmented the multipliers are
          updated after each (ContactAugment) until the penetration is below the tolerance */
       for (;;) {
         PetscInt  its1;
-        PetscBool aconv = PETSC_FALSE;
+        PetscBool aconv = PETSC_FALSE, held = PETSC_FALSE;
+        if (aug && (st->aug_loops > 0 || inexact)) {
+          /* the later solves of the step are converged to the accuracy the first one reached: |R|
+             below rtol times the first solve's initial residual r0 (or their own rtol); with
+             -contact_augmented_inexact a solve that another follows stops at eta r0 (the first
+             one: eta times its own initial residual) */
+          PetscReal a = st->aug_loops > 0 ? PetscMax(atol0, rtol * r0) : atol0, rt = rtol;
+          if (inexact && st->aug_loops == 0) rt = PetscMax(rtol, eta);
+          else if (inexact) a = PetscMax(a, eta * r0);
+          PetscCall(SNESSetTolerances(snes, a, rt, stol, maxit, maxf));
+          tol_changed = PETSC_TRUE;
+        }
         PetscCall(SNESSolve(snes, NULL, pb->U));
         PetscCall(SNESGetConvergedReason(snes, &reason));
         PetscCall(SNESGetIterationNumber(snes, &its1));
@@ -439,7 +454,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         its_max = PetscMax(its_max, its1);
         /* converged: one more evaluation at the solution (trial states, cell info, reactions) */
         if (reason > 0) PetscCall(ProblemEvaluate(pb, pb->U, lam_t));
-        if (reason > 0 && contact && st->chatter_check && its1 > 0) {
+        if (reason > 0 && contact && st->chatter_check && its1 > 0 && !inexact) {
           /* the active set must have settled: a node entering or leaving contact with a
              significant force in the last iteration means the step is not converged */
           PetscInt nch, nodeid;
@@ -452,19 +467,16 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         }
         if (reason <= 0 || !aug) break;
         st->aug_loops++;
-        PetscCall(ContactAugment(pb->contact, &aconv, &st->aug_pen, &st->aug_dlam));
-        if (aconv) break;
+        PetscCall(ContactAugment(pb->contact, inexact, &aconv, &held, &st->aug_pen, &st->aug_dlam));
+        /* an inexact solve that met the penetration tolerance: ContactAugment held the
+           multipliers; the solve is completed at them (fully converged) and checked again, and the
+           rest of the step's solves are exact */
+        if (held) inexact = PETSC_FALSE;
+        else if (aconv) break;
         if (st->aug_loops >= ContactAugmentedMax(pb->contact)) {
           reason         = SNES_DIVERGED_INNER; /* reported below as the augmentation's failure */
           st->aug_failed = PETSC_TRUE;
           break;
-        }
-        if (st->aug_loops == 1) {
-          /* the later solves of the step are converged to the accuracy the first one reached:
-             |R| below rtol times the first solve's initial residual (or their own rtol) */
-          PetscCall(SNESGetTolerances(snes, &atol0, &rtol, &stol, &maxit, &maxf));
-          PetscCall(SNESSetTolerances(snes, PetscMax(atol0, rtol * r0), rtol, stol, maxit, maxf));
-          tol_changed = PETSC_TRUE;
         }
       }
       if (tol_changed) PetscCall(SNESSetTolerances(snes, atol0, rtol, stol, maxit, maxf));
