@@ -8,7 +8,7 @@
 #include <hdf5.h>
 #include "results.h"
 
-#define CKPT_VERSION 2 /* 2: the stage */
+#define CKPT_VERSION 3 /* 2: the stage; 3: the augmented Lagrangian's kept penalty factor in the contact rows */
 
 #define CheckH5(ret, ...) PetscCheck((ret) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, __VA_ARGS__)
 
