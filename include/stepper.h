@@ -23,6 +23,7 @@ typedef struct {
   PetscInt  stall_its;     /* Newton has stalled when |R| did not fall below stall_factor times */
   PetscReal stall_factor;  /* its value stall_its iterations earlier (0: no test)              */
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */
+  PetscBool keep_contact;  /* the first Newton iteration holds the committed pressed nodes closed */
   /* the Newton monitor */
   Problem  *pb;
   PetscBool stalled;
