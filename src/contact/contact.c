@@ -80,8 +80,9 @@ struct _p_Contact {
   PetscBool  kauto, ktauto;/* K_N (K_T) per node from the elements under it (auto)              */
   PetscReal  kfactor, kratio;
   PetscBool  aug;          /* augmented Lagrangian (Uzawa updates between Newton solves)      */
-  PetscBool  keep;         /* ContactKeepCommitted: the pressed nodes of the committed state stay
-                              closed (bilateral) whatever their gap                             */
+  PetscInt   keep;         /* ContactKeepCommitted: the pressed nodes of the committed state stay
+                              closed (bilateral) whatever their gap: 0 none, 1 on frictionless
+                              tools, 2 on every tool                                             */
   PetscReal  aug_tol, aug_tol_rel, aug_mtol;
   PetscInt   aug_max;
   /* tools, owned slave vertices and their states */
@@ -866,12 +867,12 @@ PetscErrorCode ContactDestroy(Contact *c)
   PetscFunctionReturn(0);
 }
 
-/* node i, paired with tool now, is held closed (ContactKeepCommitted): it was pressed on that
-   tool in the committed state */
-static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, PetscInt tool)
+/* node i, paired with tool now (its law: mu), is held closed (ContactKeepCommitted): it was
+   pressed on that tool in the committed state */
+static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, PetscInt tool, double mu)
 {
   const ContactState *cc = &contact->cst_c[i];
-  return (contact->keep && cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool == tool) ? PETSC_TRUE : PETSC_FALSE;
+  return (contact->keep && (contact->keep > 1 || !(mu > 0)) && cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool == tool) ? PETSC_TRUE : PETSC_FALSE;
 }
 
 PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lambda, PetscBool from_committed)
@@ -914,7 +915,7 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
          nodes in contact; a node out of contact forgets its frame */
       const double lN    = contact->lam_tool[i] == tool ? contact->lam[3 * i] : 0;
       const ContactLaw nl = NodeLaw(contact, i, tool);
-      const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta) || Held(contact, i, tool)) ? PETSC_TRUE : PETSC_FALSE;
+      const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta) || Held(contact, i, tool, nl.mu)) ? PETSC_TRUE : PETSC_FALSE;
       if (in && contact->has_seed[i] && !ContactFrame(pr.n, contact->seed + 3 * i, t1, t2))
         for (int k = 0; k < 3; k++) contact->seed[3 * i + k] = t1[k];
       else if (!in) contact->has_seed[i] = PETSC_FALSE;
@@ -966,7 +967,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
   }
   PetscBool bilateral = PETSC_FALSE;
   if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0) && !(law.delta > 0 && lN - law.KN * pr.gap > -law.KN * law.delta)) { /* open (the kernel's test) */
-    if (!Held(contact, i, tool)) return 0;
+    if (!Held(contact, i, tool, law.mu)) return 0;
     bilateral = PETSC_TRUE;
   }
 
@@ -1076,7 +1077,7 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
   PetscFunctionBeginUser;
   *nfail_out = 0;
   if (!contact->ns && !(nb && J)) {
-    if (J) contact->keep = PETSC_FALSE;
+    if (J) contact->keep = 0;
     PetscFunctionReturn(0);
   }
   PetscCall(PetscLogEventBegin(contact->ev_contact, 0, 0, 0, 0));
@@ -1162,7 +1163,7 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
     PetscCall(PetscFree2(kt, nact));
   }
   *nfail_out = nfail;
-  if (J) contact->keep = PETSC_FALSE; /* the keep ends with the Jacobian it shaped */
+  if (J) contact->keep = 0; /* the keep ends with the Jacobian it shaped */
   PetscCall(PetscLogEventEnd(contact->ev_contact, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -1675,9 +1676,10 @@ PetscErrorCode ContactSetToolPresent(Contact contact, PetscInt t, PetscBool pres
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactKeepCommitted(Contact contact, PetscBool keep)
+PetscErrorCode ContactKeepCommitted(Contact contact, PetscInt keep)
 {
   PetscFunctionBeginUser;
+  PetscCheck(keep >= 0 && keep <= 2, contact->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactKeepCommitted: mode %" PetscInt_FMT " must be 0, 1 or 2", keep);
   contact->keep = keep;
   PetscFunctionReturn(0);
 }
