@@ -23,6 +23,9 @@ typedef struct {
   PetscInt  stall_its;     /* Newton has stalled when |R| did not fall below stall_factor times */
   PetscReal stall_factor;  /* its value stall_its iterations earlier (0: no test)              */
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */
+  PetscInt  keep_contact;  /* the first Newton iteration holds the committed pressed nodes closed:
+                              0 no, 1 on frictionless tools, 2 on every tool (-newton_keep_contact) */
+  PetscReal r_true0;       /* |R| at the start of the solve with the true contact law (< 0: none) */
   /* the Newton monitor */
   Problem  *pb;
   PetscBool stalled;

@@ -132,6 +132,71 @@ int main(int argc, char **argv)
     PetscCall(ContactChatter(s.c, &nch, &node));
     CHECK_ALL(nch == 0, "mu %g: nodes leaving with a force of 1e-6 of the largest are not chattering (got %d)", (double)mu, (int)nch);
 
+    /* ContactKeepCommitted (the first Newton iteration of a step): the 6 nodes pressed in the
+       committed state, now lifted off the plane by g, stay closed with the normal force continued
+       linearly, R_z = -t_N = K_N g (a pull), and the tangent K_N n n^T (with friction: held
+       tangentially too, K_T (I - n n^T) on top of the stick tangent K_T); the 3 nodes that only
+       touched stay open; the keep ends with that Jacobian assembly */
+    {
+      const double g = 0.002, KT = 10;
+      PetscCount   nco;
+      PetscScalar *cv;
+      Mat          Jd; /* only a non-NULL handle: the coordinate values are asked for */
+      int          nheld = 0, nopen = 0, bad = 0;
+      double       err = 0;
+      PetscCall(ContactSeed(s.c, u, 0, PETSC_TRUE));
+      Displace(&s.m, u, g, g);
+      PetscCall(ContactGetCOO(s.c, &nco, NULL, NULL));
+      PetscCall(PetscCalloc1(nco + 1, &cv));
+      PetscCall(MatCreate(PETSC_COMM_SELF, &Jd));
+      PetscCall(ContactKeepCommitted(s.c, 2));
+      PetscCall(PetscArrayzero(f, nloc)); /* (the assembly adds) */
+      PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+      for (PetscInt v = 0; v < s.m.nv; v++)
+        if (s.m.X[3 * v + 2] == 0 && s.m.vowned[v]) {
+          const double rz = PetscRealPart(f[s.m.vloff[v] + 2]), want = s.m.X[3 * v] != 1 ? KN * g : 0;
+          err = PetscMax(err, fabs(rz - want) / (KN * g));
+        }
+      CHECK_ALL(nfail == 0 && err < 1e-12, "mu %g, keep: residual K_N g (a pull) at the committed pressed nodes lifted by g, 0 at the touching ones; relative error %.1e", (double)mu, err);
+      PetscCall(ContactAssemble(s.c, u, 0, NULL, Jd, cv, &nfail));
+      for (PetscCount k = 0; k + 9 <= nco; k += 9) {
+        const PetscScalar *K = cv + k;
+        double             o = 0;
+        if (PetscRealPart(K[8]) == 0) {
+          for (int q = 0; q < 9; q++) o += fabs(PetscRealPart(K[q]));
+          nopen++;
+          bad += o != 0;
+          continue;
+        }
+        nheld++;
+        for (int q = 0; q < 9; q++) {
+          const double want = q == 8 ? KN : ((q == 0 || q == 4) && mu > 0 ? 2 * KT : 0);
+          err = PetscMax(err, fabs(PetscRealPart(K[q]) - want) / KN);
+        }
+      }
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nheld, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD));
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nopen, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD));
+      CHECK_ALL(nfail == 0 && nheld == 6 && nopen == 3 && !bad && err < 1e-12, "mu %g, keep: tangent diag(%s, K_N) at the 6 held nodes, 0 at the 3 open ones (held %d, open %d, relative error %.1e)", (double)mu, mu > 0 ? "2 K_T, 2 K_T" : "0, 0", nheld, nopen, err);
+      /* the keep ended with that Jacobian: the lifted nodes are open again */
+      PetscCall(PetscArrayzero(f, nloc));
+      PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+      err = 0;
+      for (PetscInt v = 0; v < s.m.nv; v++)
+        if (s.m.X[3 * v + 2] == 0 && s.m.vowned[v]) err = PetscMax(err, fabs(PetscRealPart(f[s.m.vloff[v] + 2])));
+      CHECK_ALL(err == 0, "mu %g: after the Jacobian the keep has ended, no force on lifted nodes (largest %g)", (double)mu, err);
+      /* keep 1: nodes on frictionless tools only */
+      PetscCall(ContactKeepCommitted(s.c, 1));
+      PetscCall(PetscArrayzero(f, nloc));
+      PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+      PetscCall(ContactKeepCommitted(s.c, 0));
+      err = 0;
+      for (PetscInt v = 0; v < s.m.nv; v++)
+        if (s.m.X[3 * v + 2] == 0 && s.m.vowned[v] && s.m.X[3 * v] != 1) err = PetscMax(err, fabs(PetscRealPart(f[s.m.vloff[v] + 2]) - (mu > 0 ? 0 : KN * g)) / (KN * g));
+      CHECK_ALL(err < 1e-12, "mu %g, keep 1 (frictionless tools): the lifted nodes %s (relative error %.1e)", (double)mu, mu > 0 ? "are open" : "are held", err);
+      PetscCall(MatDestroy(&Jd));
+      PetscCall(PetscFree(cv));
+    }
+
     PetscCall(PetscFree2(u, f));
     PetscCall(TearDown(&s));
   }

@@ -80,6 +80,9 @@ struct _p_Contact {
   PetscBool  kauto, ktauto;/* K_N (K_T) per node from the elements under it (auto)              */
   PetscReal  kfactor, kratio;
   PetscBool  aug;          /* augmented Lagrangian (Uzawa updates between Newton solves)      */
+  PetscInt   keep;         /* ContactKeepCommitted: the pressed nodes of the committed state stay
+                              closed (bilateral) whatever their gap: 0 none, 1 on frictionless
+                              tools, 2 on every tool                                             */
   PetscReal  aug_tol, aug_tol_rel, aug_mtol;
   PetscInt   aug_max;
   /* tools, owned slave vertices and their states */
@@ -873,6 +876,14 @@ PetscErrorCode ContactDestroy(Contact *c)
   PetscFunctionReturn(0);
 }
 
+/* node i, paired with tool now (its law: mu), is held closed (ContactKeepCommitted): it was
+   pressed on that tool in the committed state */
+static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, PetscInt tool, double mu)
+{
+  const ContactState *cc = &contact->cst_c[i];
+  return (contact->keep && (contact->keep > 1 || !(mu > 0)) && cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool == tool) ? PETSC_TRUE : PETSC_FALSE;
+}
+
 PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lambda, PetscBool from_committed)
 {
   PetscFunctionBeginUser;
@@ -913,7 +924,7 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
          nodes in contact; a node out of contact forgets its frame */
       const double lN    = contact->lam_tool[i] == tool ? contact->lam[3 * i] : 0;
       const ContactLaw nl = NodeLaw(contact, i, tool);
-      const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta)) ? PETSC_TRUE : PETSC_FALSE;
+      const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta) || Held(contact, i, tool, nl.mu)) ? PETSC_TRUE : PETSC_FALSE;
       if (in && contact->has_seed[i] && !ContactFrame(pr.n, contact->seed + 3 * i, t1, t2))
         for (int k = 0; k < 3; k++) contact->seed[3 * i + k] = t1[k];
       else if (!in) contact->has_seed[i] = PETSC_FALSE;
@@ -963,7 +974,11 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
     tTn[0] = contact->lam[3 * i + 1];
     tTn[1] = contact->lam[3 * i + 2];
   }
-  if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0) && !(law.delta > 0 && lN - law.KN * pr.gap > -law.KN * law.delta)) return 0; /* open (the kernel's test) */
+  PetscBool bilateral = PETSC_FALSE;
+  if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0) && !(law.delta > 0 && lN - law.KN * pr.gap > -law.KN * law.delta)) { /* open (the kernel's test) */
+    if (!Held(contact, i, tool, law.mu)) return 0;
+    bilateral = PETSC_TRUE;
+  }
 
   const Tool *tl = &contact->tools[tool];
   CurShift(contact, tool, lambda, sh);
@@ -985,7 +1000,28 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
     }
     dnp = dn;
   }
-  st->status    = ContactNodeEvalAug(&law, lN, pr.gap, pr.n, dnp, contact->seed + 3 * i, tTn, ds, R, contact->fd ? NULL : K, st->t1, &st->tN, st->tT);
+  if (bilateral) {
+    /* a node pressed on this tool in the committed state, held closed although it stands off it
+       (ContactKeepCommitted: the first Jacobian of a step and the residual it solves for). The
+       kernel at the gap where the bracket has its full slope (0, or -delta with the smoothing)
+       and the committed normal force as multiplier: stiffness K_N and the friction cone of the
+       committed force, t_N0 = tN_c (+ K_N delta); the normal force then continued linearly to the
+       actual gap, t_N = lN - K_N g (a pull where negative), R += -(t_N - t_N0) n, with its
+       curvature term -(t_N - t_N0) dn/dy. On a frictional tool the node is also held tangentially
+       (stiffness K_T (I - n n^T) added to the tangent): the slip tangent has no stiffness along
+       the slip, and with the small committed forces of such nodes the linearised sheet would slide
+       along the tool as a whole (measured: the hemisphere with friction, doc/performance.md). */
+    const double g0 = law.delta > 0 ? -law.delta : 0.0, tb = lN - law.KN * pr.gap;
+    double       tN0;
+    st->status = ContactNodeEvalAug(&law, cc->tN, g0, pr.n, dnp, contact->seed + 3 * i, tTn, ds, R, contact->fd ? NULL : K, st->t1, &tN0, st->tT);
+    for (int k = 0; k < 3; k++) R[k] -= (tb - tN0) * pr.n[k];
+    if (K && dnp)
+      for (int k = 0; k < 9; k++) K[k] -= (tb - tN0) * dnp[k];
+    if (K && law.mu > 0)
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) K[3 * r + c] += law.KT * ((r == c) - pr.n[r] * pr.n[c]);
+    st->tN = tb;
+  } else st->status = ContactNodeEvalAug(&law, lN, pr.gap, pr.n, dnp, contact->seed + 3 * i, tTn, ds, R, contact->fd ? NULL : K, st->t1, &st->tN, st->tT);
   st->has_frame = PETSC_TRUE;
   for (int k = 0; k < 3; k++) {
     st->f[k]  = -R[k];
@@ -1054,7 +1090,10 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
 
   PetscFunctionBeginUser;
   *nfail_out = 0;
-  if (!contact->ns && !(nb && J)) PetscFunctionReturn(0);
+  if (!contact->ns && !(nb && J)) {
+    if (J) contact->keep = 0;
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscLogEventBegin(contact->ev_contact, 0, 0, 0, 0));
   if (nb && J) PetscCall(PetscCalloc2(9 * nb, &kt, nb, &nact));
   /* pairing phase: every slave node to its tool and patch (kept in the node's memo) */
@@ -1153,6 +1192,7 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
     PetscCall(PetscFree(kdiag));
   }
   *nfail_out = nfail;
+  if (J) contact->keep = 0; /* the keep ends with the Jacobian it shaped */
   PetscCall(PetscLogEventEnd(contact->ev_contact, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -1697,5 +1737,13 @@ PetscErrorCode ContactSetToolPresent(Contact contact, PetscInt t, PetscBool pres
     for (int k = 0; k < 3; k++) s->f[k] = s->fT[k] = 0;
     contact->cst_t[i] = *s;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactKeepCommitted(Contact contact, PetscInt keep)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(keep >= 0 && keep <= 2, contact->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactKeepCommitted: mode %" PetscInt_FMT " must be 0, 1 or 2", keep);
+  contact->keep = keep;
   PetscFunctionReturn(0);
 }
