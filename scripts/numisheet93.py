@@ -487,7 +487,7 @@ def write_doc(U, C, variant, max_steps):
                 a = r["at"].get(target)
                 for k in ("DX", "DY", "DD"):
                     dev = (a[k] - CUP_AL_MEASURED[target][k]) / CUP_AL_MEASURED[target][k] if a else None
-                    cells.append("%.2f (%+.0f %%)" % (a[k], 100 * dev) if a else "–")
+                    cells.append("%.2f (%+.1f %%)" % (a[k], 100 * dev) if a else "–")
                     if target == 15.0 and a:
                         ok = (ok is not False) and abs(dev) <= CUP_AL_TOL
                 if target == 15.0:
