@@ -30,6 +30,15 @@ U = dict(t=0.78, half_length=175.0, width=35.0, punch_half=35.0, punch_r=5.0, di
          die_r=5.0, stroke=70.0, bhf=2450.0, mu=0.144)
 CUP = dict(t=0.78, half=75.0, punch_half=35.0, punch_corner=10.0, punch_r=8.0, die_half=37.0,
            die_corner=12.0, die_r=8.0, stroke=40.0, bhf=19600.0, mu=0.144)
+# The square cup in aluminium, the material of the published draw-in ([D]): t = 0.81 mm, E = 70 GPa,
+# nu = 0.3 and mu = 0.162 as [D] (71 GPa and nu = 0.33 are also quoted in the literature); the Swift
+# curve and the r-values as commonly reproduced from the specification of [M] (M-dagger: to be
+# checked against [M]). The tools are the mild steel's, the punch's head and the holder's face on the
+# thicker sheet's top face z = t.
+ALU = dict(E=70000.0, nu=0.3, K=576.79, eps0=0.01658, n=0.3593, r0=0.71, r45=0.58, r90=0.70)
+CUP_AL = dict(CUP, t=0.81, mu=0.162)
+# the cup's variants: tag (file names numisheet93_<tag>_*), geometry and process, material, its name
+CUPS = {"cup": (CUP, MILD, "mild steel"), "cup_al": (CUP_AL, ALU, "aluminium")}
 # Contact: penalties per unit area and the augmented Lagrangian holding the penetration below 0.01 mm
 # (1.3 % of the thickness), its multipliers to 20 % (with 1 %, the default, the U-channel's updates
 # stall near 8 mm of stroke). The U-channel needs a soft penalty, 100 N/mm^3: with the strip's tiny
@@ -92,11 +101,12 @@ def uchannel_mesh(level):
     return path, h
 
 
-def cup_mesh(level):
+def cup_mesh(level, tag="cup"):
+    C = CUPS[tag][0]
     n = MESHES["cup"][level]
-    path = os.path.join(SHEETS, "numisheet93_cup_%s.inp" % level)
+    path = os.path.join(SHEETS, "numisheet93_%s_%s.inp" % (tag, level))
     write_inp(path, "NUMISHEET'93 square cup, quarter blank %g x %g x %g, %d x %d x 1 hexahedra"
-              % (CUP["half"], CUP["half"], CUP["t"], n, n), n, n, CUP["half"], CUP["half"], CUP["t"],
+              % (C["half"], C["half"], C["t"], n, n), n, n, C["half"], C["half"], C["t"],
               lambda nx, ny: {"symx": lambda i, j, k: i == 0,
                               "symy": lambda i, j, k: j == 0,
                               "pin": lambda i, j, k: i == 0 and j == 0 and k == 0,
@@ -165,10 +175,11 @@ def uchannel_tools():
     h.write(os.path.join(TOOLS, "numisheet93_uchannel_holder.tool"))
 
 
-def cup_tools():
-    t = CUP["t"]
-    a, rc, rp = CUP["punch_half"], CUP["punch_corner"], CUP["punch_r"]
-    d, dc, dr = CUP["die_half"], CUP["die_corner"], CUP["die_r"]
+def cup_tools(tag="cup"):
+    C = CUPS[tag][0]
+    t = C["t"]
+    a, rc, rp = C["punch_half"], C["punch_corner"], C["punch_r"]
+    d, dc, dr = C["die_half"], C["die_corner"], C["die_r"]
     c = a - rc                     # plan centre of the punch's corner (and of the die's: d - dc)
     assert abs(c - (d - dc)) < 1e-12
     S, F, H = -5.0, 130.0, 80.0    # start past the symmetry planes, far extent of the flat faces, wall height
@@ -192,7 +203,7 @@ def cup_tools():
     p.plane([a, S, t + rp], [0, 1, 0], [0, 0, 1], [0, c - S, 0, H])                      # +x
     p.plane([S, a, t + rp], [0, 0, 1], [1, 0, 0], [0, H, 0, c - S])                      # +y
     p.cylinder([c, c, t + rp], [0, 0, 1], [1, 0, 0], rc, [0, 90, 0, H])                  # corner wall
-    p.write(os.path.join(TOOLS, "numisheet93_cup_punch.tool"))
+    p.write(os.path.join(TOOLS, "numisheet93_%s_punch.tool" % tag))
 
     def flat(tool, z, sense):
         """the face z outside the rounded square of half side d + dr, corner radius dc + dr."""
@@ -214,11 +225,11 @@ def cup_tools():
     q.plane([d, S, -H], [0, 0, 1], [0, 1, 0], [0, H - dr, 0, c - S])                     # -x
     q.plane([S, d, -H], [1, 0, 0], [0, 0, 1], [0, c - S, 0, H - dr])                     # -y
     q.cylinder([c, c, -H], [0, 0, 1], [1, 0, 0], dc, [0, 90, 0, H - dr], -1)             # corner wall, concave
-    q.write(os.path.join(TOOLS, "numisheet93_cup_die.tool"))
+    q.write(os.path.join(TOOLS, "numisheet93_%s_die.tool" % tag))
     h = ToolFile("NUMISHEET'93 square cup: blank holder (quarter), face z = t over the die's face;\n"
                  "written by scripts/make_numisheet93_cases.py")
     flat(h, t, -1)                                                                        # -z
-    h.write(os.path.join(TOOLS, "numisheet93_cup_holder.tool"))
+    h.write(os.path.join(TOOLS, "numisheet93_%s_holder.tool" % tag))
 
 
 # ---------------------------------------------------------------- cases (.opts)
@@ -302,25 +313,26 @@ def uchannel_cases(level, h):
                    "-output_dir out/numisheet93_uchannel_%s_gap" % level])
 
 
-def cup_cases(level):
+def cup_cases(level, tag="cup", gap=True):
+    CUP, m, mname = CUPS[tag]
     n = MESHES["cup"][level]
-    mesh = "cases/sheets/numisheet93_cup_%s.inp" % level
+    mesh = "cases/sheets/numisheet93_%s_%s.inp" % (tag, level)
     f_holder = CUP["bhf"] / 4
     nsteps = {"coarse": 80, "fine": 160}[level]
-    common = ["-mesh_type inp", "-mesh_file " + mesh] + material(MILD) + [
+    common = ["-mesh_type inp", "-mesh_file " + mesh] + material(m) + [
         "-model_symmetry 4",
         "-tool_names punch,die,holder",
-        "-tool_punch_file cases/tools/numisheet93_cup_punch.tool",
-        "-tool_die_file cases/tools/numisheet93_cup_die.tool",
-        "-tool_holder_file cases/tools/numisheet93_cup_holder.tool",
+        "-tool_punch_file cases/tools/numisheet93_%s_punch.tool" % tag,
+        "-tool_die_file cases/tools/numisheet93_%s_die.tool" % tag,
+        "-tool_holder_file cases/tools/numisheet93_%s_holder.tool" % tag,
     ] + contact(1000)
-    head = ("NUMISHEET'93 square cup deep drawing, mild steel, blank holder force %g kN, %s mesh:\n"
+    head = ("NUMISHEET'93 square cup deep drawing, %s, blank holder force %g kN, %s mesh:\n"
             "quarter model (x, y >= 0; x the rolling direction), blank 150 x 150 x %g (quarter 75 x 75),\n"
             "%d x %d x 1 hexahedra (hex8_eas); punch stroke %g (draw-in read at 15 and 40);\n"
-            "tools from cases/tools/numisheet93_cup_*.tool; data and sources: doc/forming.md.\n"
+            "tools from cases/tools/numisheet93_%s_*.tool; data and sources: doc/forming.md.\n"
             "Written by scripts/make_numisheet93_cases.py."
-            % (CUP["bhf"] / 1000, level, CUP["t"], n, n, CUP["stroke"]))
-    write_case("numisheet93_cup_%s" % level,
+            % (mname, CUP["bhf"] / 1000, level, CUP["t"], n, n, CUP["stroke"], tag))
+    write_case("numisheet93_%s_%s" % (tag, level),
                head + "\nProcess: close (the holder's force ramps to its value), draw (punch stroke %g)."
                % CUP["stroke"],
                common + [
@@ -339,7 +351,9 @@ def cup_cases(level):
                    "-stage_draw_duration 1", "-stage_draw_steps %d" % nsteps, "-stage_draw_dt_max %g" % (1.0 / nsteps),
                    "-stage_draw_tools punch,die,holder", "-stage_draw_bcs symx,symy",
                    "-output_interval 1",
-                   "-output_dir out/numisheet93_cup_%s" % level])
+                   "-output_dir out/numisheet93_%s_%s" % (tag, level)])
+    if not gap:
+        return
     write_case("numisheet93_cup_%s_gap" % level,
                head + "\nWith today's options: the holder fixed at a gap equal to the thickness, one contact set\n"
                "and friction for all tools, no stages.",
@@ -373,13 +387,16 @@ def cup_gap110_case(level):
 def main():
     os.makedirs(SHEETS, exist_ok=True)
     uchannel_tools()
-    cup_tools()
+    for tag in CUPS:
+        cup_tools(tag)
     for level in ("coarse", "fine"):
         _, h = uchannel_mesh(level)
         uchannel_cases(level, h)
         cup_mesh(level)
         cup_cases(level)
         cup_gap110_case(level)
+        cup_mesh(level, "cup_al")
+        cup_cases(level, "cup_al", gap=False)    # the process only
 
 
 if __name__ == "__main__":
