@@ -58,6 +58,7 @@ run restart         bash tests/test_restart.sh
 run stages          bash tests/test_stages.sh
 run forcetool       bash tests/test_forcetool.sh
 run eas-solver      bash tests/test_eas.sh
+run scripts         bash tests/test_scripts.sh
 run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh
 run umat-runs       bash tests/test_umat.sh
