@@ -90,8 +90,12 @@ open(os.path.join(os.path.dirname(os.path.dirname(sys.argv[1])), "hcheck.txt"), 
 sys.exit(0 if d < 2e-3 and pen <= 1e-3 else 1)
 PY
 # shellcheck disable=SC2086
-atrito 2 hsoft2 $HEM -contact_penalty_normal 1e3
-compare "$OUT/hsoft/contact.csv" "$OUT/hsoft2/contact.csv" 8 "augmented hemisphere, K_N 1e3: contact history at np=1 and np=2"
+# 2 ranks against 1 at the seed's K_N 1e5: at 1e3 about one 2-rank run in eight takes another
+# step sequence (a step's first solve stalls and is cut: MUMPS's parallel factorisation is not
+# bitwise reproducible, and the augmentation's decisions at its tolerances can flip with it), an
+# open robustness point of the soft penalty (doc/contact.md)
+atrito 2 hstiff2 $HEM -contact_penalty_normal 1e5
+compare "$OUT/hstiff/contact.csv" "$OUT/hstiff2/contact.csv" 8 "augmented hemisphere, K_N 1e5: contact history at np=1 and np=2"
 # shellcheck disable=SC2086
 atrito_rc 1 hstop $HEM -contact_penalty_normal 1e3 -checkpoint_interval 4 -load_max_steps 10
 # shellcheck disable=SC2086
