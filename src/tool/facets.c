@@ -932,7 +932,7 @@ static int Stationary(const FacetsData *m, int f, const double y[3], double u, d
    facet's size) is no contact (1). */
 static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], double L, const Best *b, Best *list, const int *nl, PatchCandidate *c)
 {
-  double u, v, x[3], xu[3], xv[3], P0[3], P1[3], P2[3];
+  double u, v, x[3], xu[3], xv[3];
   int    reg, f = b->f;
   TriClosest(m, f, y, &u, &v, &reg);
   if (m->smooth) {
@@ -986,22 +986,8 @@ static int FacetsFinish(const Patch *p, const FacetsData *m, const double y[3], 
     int open = 0;
     if (reg <= 3) open = m->adj[3 * f + reg - 1] == -1;
     else open = m->vbnd[m->F[3 * f + reg - 4]];
-    if (open) {
-      double n[3], rr[3];
-      FacetEvalLocal(m, f, u, v, x, xu, xv, NULL, NULL, NULL);
-      Cross(xu, xv, n);
-      const double ln = Norm(n);
-      for (int i = 0; i < 3; i++) {
-        n[i] /= ln;
-        rr[i] = y[i] - x[i];
-      }
-      const double rn = Dot(rr, n), t2 = Dot(rr, rr) - rn * rn;
-      Corner(m, f, 0, P0);
-      Corner(m, f, 1, P1);
-      Corner(m, f, 2, P2);
-      const double hf = sqrt(fmax(Dist2(P0, P1), fmax(Dist2(P1, P2), Dist2(P2, P0))));
-      if (t2 > 1e-18 * hf * hf) return 1;
-    }
+    /* y must lie on the patch's normal there (the foot on the edge), else it is beside the tool */
+    if (open && !Stationary(m, f, y, u, v)) return 1;
   }
   FacetEvalLocal(m, f, u, v, x, xu, xv, NULL, NULL, NULL);
   FacetsEncode(f, u, v, &c->xi, &c->eta);
