@@ -250,6 +250,24 @@ def write_case(name, header, lines):
         f.write("\n".join(lines) + "\n")
 
 
+def process_opts(mu, f_holder, holder_amplitude, stroke, stages, nsteps, bcs):
+    """the options the process cases share: contact set and friction per tool, the holder driven by
+    its force, the punch's stroke; then the stages: close (4 steps) and draw (nsteps, at most one
+    step per 1/nsteps), both with every tool and the conditions bcs, and the names of all stages."""
+    return ["-tool_punch_contact_set top", "-tool_die_contact_set bottom", "-tool_holder_contact_set top",
+            "-tool_punch_friction %g" % mu, "-tool_die_friction %g" % mu,
+            "-tool_holder_friction %g" % mu,
+            "-tool_holder_force_z %.10g" % -f_holder,
+            "-tool_holder_force_amplitude %s" % holder_amplitude,
+            "-tool_punch_motion 0,0,%g" % -stroke,
+            "-tool_punch_amplitude 0,0,1,0,2,1",
+            "-stage_names %s" % ",".join(stages),
+            "-stage_close_duration 1", "-stage_close_steps 4",
+            "-stage_close_tools punch,die,holder", "-stage_close_bcs %s" % bcs,
+            "-stage_draw_duration 1", "-stage_draw_steps %d" % nsteps, "-stage_draw_dt_max %g" % (1.0 / nsteps),
+            "-stage_draw_tools punch,die,holder", "-stage_draw_bcs %s" % bcs]
+
+
 def uchannel_cases(level, h):
     mesh = "cases/sheets/numisheet93_uchannel_%s.inp" % level
     sym = 2 * U["width"] / h            # half model, strip h wide out of the blank's 35 mm
@@ -280,18 +298,8 @@ def uchannel_cases(level, h):
                    "-bc_symx_components x", "-bc_sides_components y", "-bc_pin_components z",
                    # the centre line's bottom edge held where the draw left it (release and springback)
                    "-bc_pin_hold",
-                   "-tool_punch_contact_set top", "-tool_die_contact_set bottom", "-tool_holder_contact_set top",
-                   "-tool_punch_friction %g" % U["mu"], "-tool_die_friction %g" % U["mu"],
-                   "-tool_holder_friction %g" % U["mu"],
-                   "-tool_holder_force_z %.10g" % -f_holder,
-                   "-tool_holder_force_amplitude 0,0,1,1,2,1,2.5,0",
-                   "-tool_punch_motion 0,0,%g" % -U["stroke"],
-                   "-tool_punch_amplitude 0,0,1,0,2,1",
-                   "-stage_names close,draw,release,springback",
-                   "-stage_close_duration 1", "-stage_close_steps 4",
-                   "-stage_close_tools punch,die,holder", "-stage_close_bcs symx,sides",
-                   "-stage_draw_duration 1", "-stage_draw_steps %d" % nsteps, "-stage_draw_dt_max %g" % (1.0 / nsteps),
-                   "-stage_draw_tools punch,die,holder", "-stage_draw_bcs symx,sides",
+               ] + process_opts(U["mu"], f_holder, "0,0,1,1,2,1,2.5,0", U["stroke"],
+                                ("close", "draw", "release", "springback"), nsteps, "symx,sides") + [
                    "-stage_release_duration 0.5", "-stage_release_steps 10",
                    "-stage_release_tools punch,die,holder", "-stage_release_release punch,die",
                    "-stage_release_bcs symx,sides,pin",
@@ -338,18 +346,8 @@ def cup_cases(level, tag="cup", gap=True):
                common + [
                    "-bc_names symx,symy",
                    "-bc_symx_components x", "-bc_symy_components y",
-                   "-tool_punch_contact_set top", "-tool_die_contact_set bottom", "-tool_holder_contact_set top",
-                   "-tool_punch_friction %g" % CUP["mu"], "-tool_die_friction %g" % CUP["mu"],
-                   "-tool_holder_friction %g" % CUP["mu"],
-                   "-tool_holder_force_z %.10g" % -f_holder,
-                   "-tool_holder_force_amplitude 0,0,1,1,2,1",
-                   "-tool_punch_motion 0,0,%g" % -CUP["stroke"],
-                   "-tool_punch_amplitude 0,0,1,0,2,1",
-                   "-stage_names close,draw",
-                   "-stage_close_duration 1", "-stage_close_steps 4",
-                   "-stage_close_tools punch,die,holder", "-stage_close_bcs symx,symy",
-                   "-stage_draw_duration 1", "-stage_draw_steps %d" % nsteps, "-stage_draw_dt_max %g" % (1.0 / nsteps),
-                   "-stage_draw_tools punch,die,holder", "-stage_draw_bcs symx,symy",
+               ] + process_opts(CUP["mu"], f_holder, "0,0,1,1,2,1", CUP["stroke"], ("close", "draw"), nsteps,
+                                "symx,symy") + [
                    "-output_interval 1",
                    "-output_dir out/numisheet93_%s_%s" % (tag, level)])
     if not gap:
