@@ -130,7 +130,7 @@ PetscErrorCode ContactChatter(Contact c, PetscInt *count, PetscInt *node);
 /* keep 1 (nodes on frictionless tools) or 2 (every tool): every such node pressed in the
    committed state (in contact with a normal force) and paired with the same tool now is closed
    whatever its gap, below the tool as always, off it with the normal force continued linearly,
-   t_N = lN - K_N g < 0 (bilateral), until the next Jacobian assembly (which ends the keep); 0: off */
+   t_N = lN - K_N g < 0 (bilateral), until it is ended (0: off; the stepper ends it before the first line search) */
 PetscErrorCode ContactKeepCommitted(Contact c, PetscInt keep);
 PetscErrorCode ContactGetToolResult(Contact c, PetscInt tool, PetscReal lambda, ContactToolResult *r);
 /* multiplicity of the model (force_full = force * symmetry) */

@@ -47,6 +47,13 @@ for tool in plane sphere coons sphere_area; do
       pycheck snes_test_jacobian "$OUT/$name.log" 10 1e-5 "with contact on a $tool, $tan tangent" --contact "$OUT/$name"
   done
 done
+#    the first iteration of a step holds the committed contact set (-newton_keep_contact, default
+#    on frictionless tools): its Jacobian is tested against the held residual (the seed punch to
+#    step 17, where lightly pressed nodes stand off the punch at the predictor)
+#    (-load_max_steps stops it with exit 1 and its error line)
+atrito_rc 1 jac_keep -options_file cases/hemisphere_frictionless.opts -output_interval 0 -load_max_steps 17 -snes_test_jacobian
+grep -q "load_max_steps 17 reached" "$OUT/jac_keep.log" || not_ok "jac_keep did not run its 17 steps (exit $RC)"
+pycheck snes_test_jacobian "$OUT/jac_keep.log" 50 1e-5 "with the committed contact set held in the first iteration (-newton_keep_contact frictionless), frictionless seed punch"
 
 # 3. quadratic convergence: elastic block pressed into a sphere that then slides, with friction
 atrito 1 quad -options_file cases/block_sphere.opts -output_interval 0 -snes_monitor &&

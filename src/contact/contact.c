@@ -1090,10 +1090,7 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
 
   PetscFunctionBeginUser;
   *nfail_out = 0;
-  if (!contact->ns && !(nb && J)) {
-    if (J) contact->keep = 0;
-    PetscFunctionReturn(0);
-  }
+  if (!contact->ns && !(nb && J)) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(contact->ev_contact, 0, 0, 0, 0));
   if (nb && J) PetscCall(PetscCalloc2(9 * nb, &kt, nb, &nact));
   /* pairing phase: every slave node to its tool and patch (kept in the node's memo) */
@@ -1192,7 +1189,6 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
     PetscCall(PetscFree(kdiag));
   }
   *nfail_out = nfail;
-  if (J) contact->keep = 0; /* the keep ends with the Jacobian it shaped */
   PetscCall(PetscLogEventEnd(contact->ev_contact, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -251,6 +251,21 @@ static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, P
   PetscFunctionReturn(0);
 }
 
+/* the end of -newton_keep_contact: before the line search of the first Newton iteration (after its
+   Jacobian, so that -snes_test_jacobian compares that Jacobian with the residual it belongs to) */
+static PetscErrorCode KeepEnd(SNESLineSearch ls, Vec X, Vec Y, PetscBool *changed, void *ctx)
+{
+  Stepper *st = (Stepper *)ctx;
+
+  PetscFunctionBeginUser;
+  (void)ls;
+  (void)X;
+  (void)Y;
+  *changed = PETSC_FALSE;
+  if (st->pb && st->pb->contact) PetscCall(ContactKeepCommitted(st->pb->contact, 0));
+  PetscFunctionReturn(0);
+}
+
 /* Start of every Newton iteration: the frame recurrence of eq 30 at the current iterate */
 static PetscErrorCode NewtonUpdate(SNES snes, PetscInt it)
 {
@@ -327,6 +342,11 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(VecDuplicate(pb->U, &W));
   PetscCall(SNESSetConvergenceHistory(snes, rhist, itshist, 256, PETSC_TRUE));
   PetscCall(SNESSetUpdate(snes, NewtonUpdate));
+  {
+    SNESLineSearch ls;
+    PetscCall(SNESGetLineSearch(snes, &ls));
+    PetscCall(SNESLineSearchSetPreCheck(ls, KeepEnd, st));
+  }
   PetscCall(SNESSetConvergenceTest(snes, NewtonConverged, st, NULL));
   if (st->bcs->nswitch) { /* conditions that stages switch: their rows (bc.h) */
     PetscCall(SNESSetFunction(snes, NULL, StepperFormFunction, st));
@@ -441,13 +461,15 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       if (aug) PetscCall(SNESGetTolerances(snes, &atol0, &rtol, &stol, &maxit, &maxf));
       /* the first Newton iteration of the step solves with the committed contact set: a node
          pressed in the committed state stays closed in its residual and its Jacobian whatever the
-         predictor's gap (ContactKeepCommitted; the keep ends with that Jacobian, the line search
-         and every later iteration see the true law). The extrapolation leaves lightly pressed
+         predictor's gap (ContactKeepCommitted; KeepEnd ends the keep before the first line search:
+         the line search and every later iteration see the true law). The extrapolation leaves lightly pressed
          nodes a few micrometres off the tool (their committed penetration t_N/K_N is smaller than
          the predictor's error): open, they have no stiffness, and the plastic sheet's Newton step
          drove them millimetres into the tool, the line search cutting it to 1 % (doc/performance.md) */
       st->r_true0 = -1;
-      if (contact && st->keep_contact > 0) {
+      PetscBool newtonls;
+      PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESNEWTONLS, &newtonls)); /* the keep ends at the line search */
+      if (contact && st->keep_contact > 0 && newtonls) {
         /* the true residual at the start: the tolerances and the reported initial residual */
         pb->lambda = lam_t;
         PetscCall(StepperFormFunction(snes, pb->U, R, st));
@@ -472,7 +494,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
           tol_changed = PETSC_TRUE;
         }
         PetscCall(SNESSolve(snes, NULL, pb->U));
-        if (contact) PetscCall(ContactKeepCommitted(pb->contact, 0)); /* (a solve that ended before its first Jacobian) */
+        if (contact) PetscCall(ContactKeepCommitted(pb->contact, 0)); /* (a solve that ended before its first line search) */
         PetscCall(SNESGetConvergedReason(snes, &reason));
         PetscCall(SNESGetIterationNumber(snes, &its1));
         if (st->aug_loops == 0) r0 = st->r_true0 >= 0 ? st->r_true0 : rhist[0];
