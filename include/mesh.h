@@ -21,6 +21,7 @@ typedef struct {
   char       file[PETSC_MAX_PATH_LEN];
   PetscReal  box_lower[3], box_upper[3];
   PetscInt   box_cells[3];
+  PetscReal  box_grading[3]; /* last cell over first along x, y, z (geometric; 1 uniform) */
   PetscReal  blank_radius, blank_thickness, blank_core;
   PetscInt   blank_core_cells, blank_radial_cells, blank_layers;
   PetscBool  blank_quarter;

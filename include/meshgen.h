@@ -24,6 +24,9 @@ typedef struct {
 /* Box [lo, hi] with n[0] x n[1] x n[2] hexahedra.
    Node sets: xmin xmax ymin ymax zmin zmax. Element set: all. */
 PetscErrorCode MeshDataCreateBox(const PetscReal lo[3], const PetscReal hi[3], const PetscInt n[3], MeshData *m);
+/* The same with geometric grading along each direction: grading[d] is the size of the last cell
+   over the first (cell sizes in geometric progression; 1: uniform, > 1: fine at lo, < 1: fine at hi). */
+PetscErrorCode MeshDataCreateBoxGraded(const PetscReal lo[3], const PetscReal hi[3], const PetscInt n[3], const PetscReal grading[3], MeshData *m);
 
 /* Circular blank of radius R and thickness t in 0 <= z <= t, centred on the z axis, O-grid:
    a central square block of half-side core*R (0 < core < 1) with ncore x ncore cells per

@@ -289,6 +289,58 @@ static PetscErrorCode TestBox(void)
   PetscFunctionReturn(0);
 }
 
+/* ---------------------------------------------------------------- graded box */
+static PetscErrorCode TestBoxGraded(void)
+{
+  const PetscReal lo[3] = {0, -1, 0}, hi[3] = {3, 1, 2};
+  const PetscInt  n[3]  = {6, 1, 4};
+  const PetscReal gr[3] = {10, 5, 0.125}; /* last cell over first: x 10, y (one cell) ignored, z 1/8 */
+  MeshData        m;
+  double          vol, mindet, ratio_dev = 0;
+  PetscErrorCode  ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(MeshDataCreateBoxGraded(lo, hi, n, gr, &m));
+  /* the grid lines along x (vertices 0..6 of the first row) and z (every (7*2)th vertex) */
+  {
+    double x[7], z[5], hx[6], hz[4];
+    for (int i = 0; i <= 6; i++) x[i] = m.X[3 * i];
+    for (int k = 0; k <= 4; k++) z[k] = m.X[3 * (7 * 2 * k) + 2];
+    for (int i = 0; i < 6; i++) hx[i] = x[i + 1] - x[i];
+    for (int k = 0; k < 4; k++) hz[k] = z[k + 1] - z[k];
+    TU_CHECK(x[0] == 0 && x[6] == 3 && z[0] == 0 && z[4] == 2, "graded box: end lines exactly on the bounds (x %g..%g, z %g..%g)", x[0], x[6], z[0], z[4]);
+    TU_CHECK(fabs(hx[5] / hx[0] - 10) < 1e-12 && fabs(hz[3] / hz[0] - 0.125) < 1e-12, "graded box: last over first cell %.15g along x (expected 10), %.15g along z (expected 0.125)", hx[5] / hx[0], hz[3] / hz[0]);
+    /* sizes in geometric progression: q = 10^(1/5) along x, (1/8)^(1/3) = 1/2 along z */
+    for (int i = 0; i < 5; i++) ratio_dev = PetscMax(ratio_dev, fabs(hx[i + 1] / hx[i] - pow(10, 0.2)));
+    for (int k = 0; k < 3; k++) ratio_dev = PetscMax(ratio_dev, fabs(hz[k + 1] / hz[k] - 0.5));
+    TU_CHECK(ratio_dev < 1e-12, "graded box: successive cells in the ratio q = r^(1/(n-1)) (largest deviation %g)", ratio_dev);
+    TU_CHECK(fabs(hz[0] - 2 * 8.0 / 15) < 1e-14, "graded box: first z cell %.15g (expected 2 * 8/15 for sizes 8, 4, 2, 1)", hz[0]);
+    TU_CHECK(m.X[3 * 7 + 1] == 1 && m.X[1] == -1, "graded box: a single cell spans its direction whatever the grading (y %g..%g)", m.X[1], m.X[3 * 7 + 1]);
+  }
+  PetscCall(MeshVolume(&m, &vol, &mindet));
+  TU_CHECK(tu_reldiff(vol, 3.0 * 2.0 * 2.0, 1e-300) < 1e-13 && mindet > 0, "graded box: volume %.15g (expected 12), smallest det J %g > 0", vol, mindet);
+  PetscCall(MeshDataDestroy(&m));
+  { /* uniform grading repeats the plain box bit for bit */
+    const PetscReal one[3] = {1, 1, 1};
+    MeshData        a, b;
+    int             same = 1;
+    PetscCall(MeshDataCreateBox(lo, hi, n, &a));
+    PetscCall(MeshDataCreateBoxGraded(lo, hi, n, one, &b));
+    for (PetscInt i = 0; i < 3 * a.nv; i++) same = same && a.X[i] == b.X[i];
+    TU_CHECK(same, "graded box: grading 1,1,1 gives the plain box's coordinates exactly");
+    PetscCall(MeshDataDestroy(&a));
+    PetscCall(MeshDataDestroy(&b));
+  }
+  { /* a grading that is not positive */
+    const PetscReal bad[3] = {1, 0, 1};
+    PetscCall(PetscPushErrorHandler(CaptureHandler, NULL));
+    ierr = MeshDataCreateBoxGraded(lo, hi, n, bad, &m);
+    PetscCall(PetscPopErrorHandler());
+    TU_CHECK(ierr != 0 && strstr(ErrMsg, "grading") && strstr(ErrMsg, "y direction"), "graded box: grading 0 in y gives error %d [%s]", (int)ierr, ErrMsg);
+  }
+  PetscFunctionReturn(0);
+}
+
 /* ---------------------------------------------------------------- blank */
 static PetscErrorCode CheckBlank(PetscReal R, PetscReal t, PetscReal core, PetscInt nc, PetscInt nr, PetscInt nl, PetscBool quarter, PetscBool verbose)
 {
@@ -469,6 +521,7 @@ int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(TestBox());
+  PetscCall(TestBoxGraded());
   PetscCall(TestBlank());
   PetscCall(TestInpTwoHex());
   PetscCall(TestInpFeatures());

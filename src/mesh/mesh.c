@@ -144,7 +144,7 @@ static PetscErrorCode MeshDataLoad(const MeshOptions *o, MeshData *m)
   PetscFunctionBeginUser;
   switch (o->source) {
   case MESH_BOX:
-    PetscCall(MeshDataCreateBox(o->box_lower, o->box_upper, o->box_cells, m));
+    PetscCall(MeshDataCreateBoxGraded(o->box_lower, o->box_upper, o->box_cells, o->box_grading, m));
     break;
   case MESH_BLANK:
     PetscCall(MeshDataCreateBlank(o->blank_radius, o->blank_thickness, o->blank_core, o->blank_core_cells, o->blank_radial_cells, o->blank_layers, o->blank_quarter, m));

@@ -2,6 +2,7 @@
    and an Abaqus-style .inp reader. See include/meshgen.h for the interface. */
 #include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -128,6 +129,29 @@ static PetscErrorCode MeshDataAlloc(MeshData *m, PetscInt nv, PetscInt ne)
 /* ------------------------------------------------------------------------------------------ */
 PetscErrorCode MeshDataCreateBox(const PetscReal lo[3], const PetscReal hi[3], const PetscInt n[3], MeshData *m)
 {
+  const PetscReal one[3] = {1, 1, 1};
+  PetscFunctionBeginUser;
+  PetscCall(MeshDataCreateBoxGraded(lo, hi, n, one, m));
+  PetscFunctionReturn(0);
+}
+
+/* the coordinate of grid line i of n on [lo, hi] with geometric grading r (the last cell's size
+   over the first's): the cell sizes h_k = h_0 q^k, q = r^(1/(n-1)), so that
+   x_i = lo + (hi - lo) (q^i - 1)/(q^n - 1); uniform for r = 1 (or n = 1). The end lines are
+   exactly lo and hi. */
+static PetscReal GradedLine(PetscReal lo, PetscReal hi, PetscInt i, PetscInt n, PetscReal r)
+{
+  if (i == 0) return lo;
+  if (i == n) return hi;
+  if (r == 1 || n == 1) return lo + (hi - lo) * (PetscReal)i / (PetscReal)n;
+  {
+    const PetscReal q = PetscPowReal(r, 1.0 / (PetscReal)(n - 1));
+    return lo + (hi - lo) * expm1((double)i * log(q)) / expm1((double)n * log(q));
+  }
+}
+
+PetscErrorCode MeshDataCreateBoxGraded(const PetscReal lo[3], const PetscReal hi[3], const PetscInt n[3], const PetscReal grading[3], MeshData *m)
+{
   const char *dname = "xyz";
   const char *pname[3][2] = {
     {"xmin", "xmax"},
@@ -144,6 +168,7 @@ PetscErrorCode MeshDataCreateBox(const PetscReal lo[3], const PetscReal hi[3], c
   for (PetscInt d = 0; d < 3; d++) {
     PetscCheck(n[d] >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "box: number of cells %" PetscInt_FMT " in the %c direction (-box_cells) must be >= 1", n[d], dname[d]);
     PetscCheck(!PetscIsInfOrNanReal(lo[d]) && !PetscIsInfOrNanReal(hi[d]) && hi[d] > lo[d], PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "box: upper bound %g (-box_upper) must exceed lower bound %g (-box_lower) in the %c direction", (double)hi[d], (double)lo[d], dname[d]);
+    PetscCheck(grading[d] > 0 && PetscIsNormalReal(grading[d]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "box: grading %g in the %c direction (-box_grading) must be positive", (double)grading[d], dname[d]);
   }
   nx   = n[0];
   ny   = n[1];
@@ -159,7 +184,7 @@ PetscErrorCode MeshDataCreateBox(const PetscReal lo[3], const PetscReal hi[3], c
       for (PetscInt i = 0; i <= nx; i++) {
         const PetscInt  v     = i + (nx + 1) * (j + (ny + 1) * k);
         const PetscInt  ijk[3] = {i, j, k};
-        for (PetscInt d = 0; d < 3; d++) m->X[3 * v + d] = ijk[d] == n[d] ? hi[d] : lo[d] + (hi[d] - lo[d]) * (PetscReal)ijk[d] / (PetscReal)n[d];
+        for (PetscInt d = 0; d < 3; d++) m->X[3 * v + d] = GradedLine(lo[d], hi[d], ijk[d], n[d], grading[d]);
       }
   for (PetscInt k = 0; k < nz; k++)
     for (PetscInt j = 0; j < ny; j++)

@@ -18,6 +18,7 @@ PetscErrorCode MeshSetFromOptions(MPI_Comm comm, MeshOptions *o)
     o->box_lower[i] = 0;
     o->box_upper[i] = 1;
     o->box_cells[i] = 2;
+    o->box_grading[i] = 1;
   }
   o->blank_radius       = 59.18;
   o->blank_thickness    = 1.0;
@@ -63,6 +64,11 @@ PetscErrorCode MeshSetFromOptions(MPI_Comm comm, MeshOptions *o)
       PetscCheck(i3[i] >= 1, comm, PETSC_ERR_USER_INPUT, "-box_cells: %" PetscInt_FMT " must be >= 1", i3[i]);
       o->box_cells[i] = i3[i];
     }
+    n = 3;
+    PetscCall(PetscOptionsRealArray("-box_grading", "Box: geometric grading along x,y,z, the size of the last cell over the first's (1: uniform; > 1 fine at -box_lower, < 1 fine at -box_upper)", NULL, o->box_grading, &n, &set));
+    PetscCheck(!set || n == 3, comm, PETSC_ERR_USER_INPUT, "-box_grading needs 3 values, got %" PetscInt_FMT, n);
+    PetscCall(AtritoCheckFinite(comm, "-box_grading", o->box_grading, 3));
+    for (int i = 0; i < 3; i++) PetscCheck(o->box_grading[i] > 0, comm, PETSC_ERR_USER_INPUT, "-box_grading: component %d (%g) must be positive", i, (double)o->box_grading[i]);
 
     PetscCall(PetscOptionsReal("-blank_radius", "Blank: radius", NULL, o->blank_radius, &o->blank_radius, NULL));
     PetscCall(PetscOptionsReal("-blank_thickness", "Blank: thickness", NULL, o->blank_thickness, &o->blank_thickness, NULL));
