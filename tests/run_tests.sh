@@ -50,6 +50,7 @@ run solver          bash tests/test_solver.sh
 run hill48-solver   bash tests/test_hill48.sh
 run contact         bash tests/test_contact.sh
 run auglag          bash tests/test_auglag.sh
+run hertz           bash tests/test_hertz.sh
 run benchmark       bash tests/test_benchmark.sh
 run facets          bash tests/test_facets.sh
 run partition       bash tests/test_partition.sh
