@@ -122,6 +122,7 @@ PetscErrorCode ContactAugment(Contact c, PetscBool inexact, PetscBool *converged
    every solve fully converged, and always 0 without augmentation) */
 PetscErrorCode ContactAugmentStart(Contact c, PetscReal *inexact);
 PetscErrorCode ContactAugmentTolerances(Contact c, PetscReal *tol, PetscReal *mtol);
+PetscErrorCode ContactAugmentSoften(Contact c, PetscBool *softened, PetscReal *factor);
 /* the contact status and normal force of every slave node at the current iterate */
 PetscErrorCode ContactRecordActive(Contact c);
 /* nodes that entered or left contact in the last Newton iteration with a significant normal

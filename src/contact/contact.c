@@ -113,6 +113,8 @@ struct _p_Contact {
   PetscBool     aug_keep;      /* -contact_augmented_growth_keep: the grown factor carries over  */
   PetscReal     kscale_c;      /* the factor committed with the last step (the next one starts from it) */
   PetscReal     aug_inexact;   /* -contact_augmented_inexact: relative residual at which a solve is followed by an update (0: exact solves) */
+  PetscBool     aug_monitor;   /* -contact_augmented_monitor: one line per update                */
+  PetscBool     aug_soften;    /* -contact_augmented_soften: a failed Newton solve retries the step at softer penalties */
   /* per-tool settings and drives, the tool unknowns */
   ToolContact  *tc;            /* ntools                                                      */
   char         *tmask;         /* ns*ntools: node i may pair with tool t (it is in the tool's sets) */
@@ -512,6 +514,8 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     PetscCall(PetscOptionsBool("-contact_augmented_growth_keep", "Augmented Lagrangian: the penalties' growth carries over to the next steps (false: every step starts from the penalties as given)", NULL, c->aug_keep, &c->aug_keep, NULL));
     PetscCall(PetscOptionsReal("-contact_augmented_inexact", "Augmented Lagrangian: the multipliers are updated as soon as |R| is below this fraction of the step's initial residual; the step ends with a fully converged solve at the final multipliers (0: every solve fully converged)", NULL, c->aug_inexact, &c->aug_inexact, NULL));
     PetscCheck(c->aug_inexact >= 0 && c->aug_inexact < 1, comm, PETSC_ERR_USER_INPUT, "-contact_augmented_inexact %g must lie in [0, 1)", (double)c->aug_inexact);
+    PetscCall(PetscOptionsBool("-contact_augmented_soften", "Augmented Lagrangian: a step whose Newton solve fails is retried once at the same increment with the penalties -contact_augmented_growth times softer (down to 1/-contact_augmented_growth_max times the given ones; kept for the next steps), before the increment is cut", NULL, c->aug_soften, &c->aug_soften, NULL));
+    PetscCall(PetscOptionsBool("-contact_augmented_monitor", "Augmented Lagrangian: print one line per multiplier update (penetration, stick slip, multiplier changes, relaxation, penalties' factor)", NULL, c->aug_monitor, &c->aug_monitor, NULL));
     PetscCall(PetscOptionsReal("-contact_augmented_growth_max", "Augmented Lagrangian: largest factor the penalties grow by", NULL, c->aug_grow_max, &c->aug_grow_max, NULL));
     PetscCheck(c->aug_grow >= 1 && PetscIsNormalReal(c->aug_grow), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_growth %g must be >= 1", (double)c->aug_grow);
     PetscCheck(c->aug_grow_max >= 1 && PetscIsNormalReal(c->aug_grow_max), comm, PETSC_ERR_USER_INPUT, "-contact_augmented_growth_max %g must be >= 1", (double)c->aug_grow_max);
@@ -1387,7 +1391,8 @@ PetscInt  ContactAugmentedMax(Contact contact) { return contact->aug_max; }
    and no multiplier changed by more than -contact_augmented_multiplier_tol times the largest. */
 PetscErrorCode ContactAugment(Contact contact, PetscBool inexact, PetscBool *converged, PetscBool *held, PetscReal *maxpen, PetscReal *dlambda)
 {
-  PetscReal loc[4] = {0, 0, 0, 0}, gl[4]; /* penetration, stick slip, change, largest multiplier */
+  PetscReal loc[6] = {0, 0, 0, 0, 0, 0}, gl[6]; /* penetration, stick slip, change, largest multiplier, normal change, tangential change */
+  PetscReal cnt[3] = {0, 0, 0}, gcnt[3];         /* nodes pressed, sticking, slipping (monitor) */
   PetscReal dot[4] = {0, 0, 0, 0}, gdot[4], omega[2] = {1, 1};
   PetscBool conv;
 
@@ -1408,6 +1413,11 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool inexact, PetscBool *con
     const PetscReal dT = PetscSqrtReal(r[1] * r[1] + r[2] * r[2]);
     loc[2]             = PetscMax(loc[2], PetscSqrtReal(r[0] * r[0] + dT * dT));
     loc[3]             = PetscMax(loc[3], PetscSqrtReal(nN * nN + nT[0] * nT[0] + nT[1] * nT[1]));
+    loc[4]             = PetscMax(loc[4], PetscAbsReal(r[0]));
+    loc[5]             = PetscMax(loc[5], dT);
+    if (Pressed(st)) cnt[0] += 1;
+    if (in && st->status == CONTACT_STICK) cnt[1] += 1;
+    if (in && st->status == CONTACT_SLIP) cnt[2] += 1;
     if (Pressed(st)) loc[0] = PetscMax(loc[0], -st->gap);
     if (st->status == CONTACT_STICK && nt >= 0 && contact->tc[nt].law.mu > 0) loc[1] = PetscMax(loc[1], dT / NodeLaw(contact, i, nt).KT);
     for (int k = 0; k < 3; k++) {
@@ -1416,7 +1426,8 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool inexact, PetscBool *con
       dot[2 * (k > 0) + 1] += d * d;
     }
   }
-  PetscCall(MPIU_Allreduce(loc, gl, 4, MPIU_REAL, MPIU_MAX, contact->comm));
+  PetscCall(MPIU_Allreduce(loc, gl, 6, MPIU_REAL, MPIU_MAX, contact->comm));
+  if (contact->aug_monitor) PetscCall(MPIU_Allreduce(cnt, gcnt, 3, MPIU_REAL, MPIU_SUM, contact->comm));
   PetscCall(MPIU_Allreduce(dot, gdot, 4, MPIU_REAL, MPIU_SUM, contact->comm));
   /* Aitken's relaxation of the fixed-point iteration lambda <- lambda + r (Irons and Tuck): the
      first update of a step is the plain Uzawa one, the later ones lambda + omega r with
@@ -1424,6 +1435,8 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool inexact, PetscBool *con
      normal multipliers, one for the tangential ones (their rates differ: K_N against K_T) */
   conv = (gl[0] <= contact->tol && gl[1] <= contact->tol && gl[2] <= contact->aug_mtol * gl[3]) ? PETSC_TRUE : PETSC_FALSE;
   *held = (inexact && gl[0] <= contact->tol && gl[1] <= contact->tol) ? PETSC_TRUE : PETSC_FALSE;
+  if (contact->aug_monitor)
+    PetscCall(PetscPrintf(contact->comm, "  augmentation %" PetscInt_FMT "%s: penetration %.3e stick slip %.3e change %.3e (normal %.3e, tangential %.3e) of %.3e; pressed %d stick %d slip %d; factor %g%s\n", contact->naug + 1, inexact ? " (inexact)" : "", (double)gl[0], (double)gl[1], (double)gl[2], (double)gl[4], (double)gl[5], (double)gl[3], (int)gcnt[0], (int)gcnt[1], (int)gcnt[2], (double)contact->kscale, *held ? ", held" : (conv ? ", converged" : "")));
   if (*held) {
     /* an inexact solve whose penetration and stick slip are below the tolerance: the multipliers
        stay, the solve is completed at them and checked again (an update that is still needed then
@@ -1486,6 +1499,28 @@ PetscErrorCode ContactAugmentStart(Contact contact, PetscReal *inexact)
   PetscFunctionBeginUser;
   *inexact = contact->aug ? contact->aug_inexact : 0;
   if (contact->aug) contact->kscale = contact->aug_keep ? contact->kscale_c : 1;
+  PetscFunctionReturn(0);
+}
+
+/* -contact_augmented_soften: the Newton solve of a step failed. The augmented Lagrangian does not
+   need a stiff penalty for its accuracy (the multipliers carry the force, the penetration is
+   driven below the tolerance by the updates), while a stiff one makes Newton's contact terms switch
+   hard (the seed punch at K_N = 1e6 per node: first solves of 12 to 23 iterations, the failed ones
+   cut). So the retry of the step starts from penalties -contact_augmented_growth times softer than
+   the committed factor (at most down to 1/-contact_augmented_growth_max times the given ones) and,
+   with -contact_augmented_growth_keep, the next steps start from it too (the growth makes them
+   stiffer again where the updates converge too slowly). softened: PETSC_FALSE when off, without
+   growth_keep, or at the floor. */
+PetscErrorCode ContactAugmentSoften(Contact contact, PetscBool *softened, PetscReal *factor)
+{
+  PetscFunctionBeginUser;
+  *softened = PETSC_FALSE;
+  *factor   = contact->kscale_c;
+  if (!contact->aug || !contact->aug_soften || !contact->aug_keep || !(contact->aug_grow > 1)) PetscFunctionReturn(0);
+  if (contact->kscale_c / contact->aug_grow < (1 - 1e-12) / contact->aug_grow_max) PetscFunctionReturn(0);
+  contact->kscale_c /= contact->aug_grow;
+  *softened = PETSC_TRUE;
+  *factor   = contact->kscale_c;
   PetscFunctionReturn(0);
 }
 

@@ -328,7 +328,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscReal      lam_c = 0, dl = st->stages.s[0].dt0, dl_prev = 0, rhist[256];
   PetscInt       stage = 0;
   const PetscReal T = st->stages.T, tol = 1e-12 * T;
-  PetscInt       itshist[256], step = 0, total_its = 0, total_cuts = 0;
+  PetscInt       itshist[256], step = 0, total_its = 0, total_cuts = 0, total_soft = 0;
   CheckpointInfo ci;
   PetscLogDouble t0, t1;
   const PetscBool contact = ContactNumTools(pb->contact) > 0 ? PETSC_TRUE : PETSC_FALSE;
@@ -387,6 +387,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   while (lam_c < T - tol) {
     SNESConvergedReason reason;
     PetscInt            its = 0, its_max = 0, cuts = 0, nres;
+    PetscBool           softened = PETSC_FALSE; /* this step has been retried at softer penalties */
     PetscReal           lam_t, r0 = 0, h, next;
     const PetscBool     aug = ContactAugmented(pb->contact);
 
@@ -530,6 +531,19 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       }
       if (tol_changed) PetscCall(SNESSetTolerances(snes, atol0, rtol, stol, maxit, maxf));
       if (reason > 0) break;
+      if (aug && !st->aug_failed && !softened) {
+        /* -contact_augmented_soften: a failed Newton solve of an augmented step is retried once at
+           the same increment with softer penalties (ContactAugmentSoften), then cut as usual */
+        PetscReal f;
+        PetscCall(ContactAugmentSoften(pb->contact, &softened, &f));
+        if (softened) {
+          char buf[256];
+          FailureCause(st, pb, reason, buf, sizeof(buf));
+          total_soft++;
+          PetscCall(PetscPrintf(pb->comm, "step %" PetscInt_FMT " at %s %.6g: %s; retrying with the penalties' factor %g (-contact_augmented_soften)\n", step + 1, st->stages.given ? "time" : "load", (double)lam_t, buf, (double)f));
+          continue;
+        }
+      }
       {
         char buf[256];
         FailureCause(st, pb, reason, buf, sizeof(buf));
@@ -588,6 +602,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   }
   PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(pb->comm, "done: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " cuts, %.2f s\n", step, total_its, total_cuts, t1 - t0));
+  if (total_soft) PetscCall(PetscPrintf(pb->comm, "augmented Lagrangian: %" PetscInt_FMT " steps retried at softer penalties (-contact_augmented_soften)\n", total_soft));
 
   PetscCall(ResultsClose(res));
   PetscCall(VecDestroy(&R));
