@@ -102,3 +102,29 @@ atrito_rc 1 hstop $HEM -contact_penalty_normal 1e3 -checkpoint_interval 4 -load_
 if $MPI 1 $A $HEM -contact_penalty_normal 1e3 -output_dir "$OUT/hstop" -restart "$OUT/hstop/checkpoint.h5" >"$OUT/hstop2.log" 2>&1 </dev/null; then
   compare "$OUT/hsoft/contact.csv" "$OUT/hstop/contact.csv" 10 "augmented hemisphere, K_N 1e3, stopped at step 10 and restarted from step 8 (np=1): contact.csv"
 else not_ok "augmented hemisphere restart failed"; tail -n 5 "$OUT/hstop2.log" | indent; fi
+
+# 9. -contact_augmented_soften: block and sphere at a stiff penalty (K_N 1e7), where Newton fails:
+#    the failed step is retried at the same increment with the penalties 8 times softer (kept for
+#    the next steps), the run ends with fewer cuts than without, the penetration below the
+#    tolerance; a restart from a checkpoint after the softening repeats the uninterrupted run (the
+#    factor is in the checkpoint)
+SOFT="-options_file cases/block_sphere.opts -output_interval 0 -contact_penalty_normal 1e7 $AUG"
+# shellcheck disable=SC2086
+atrito 1 stiff_plain $SOFT
+# shellcheck disable=SC2086
+atrito 1 stiff_soft $SOFT -contact_augmented_soften &&
+  $PY - "$OUT/stiff_plain.log" "$OUT/stiff_soft.log" "$OUT/stiff_soft/contact.csv" <<'PY'
+import csv, re, sys
+plain, soft = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+cuts = [int(re.search(r"done: \d+ steps, \d+ Newton iterations, (\d+) cuts", t).group(1)) for t in (plain, soft)]
+nsoft = len(re.findall(r"retrying with the penalties' factor", soft))
+pen = max(float(x["max_penetration"]) for x in csv.DictReader(open(sys.argv[3])))
+ok = nsoft > 0 and "steps retried at softer penalties" in soft and cuts[1] < cuts[0] and pen <= 1e-4
+print(("ok - " if ok else "not ok - ") + f"augmented, K_N 1e7, -contact_augmented_soften: {nsoft} softened retries, {cuts[1]} cuts (without: {cuts[0]}), largest penetration {pen:.2e} (tolerance 1e-4)")
+PY
+# shellcheck disable=SC2086
+atrito_rc 1 softstop $SOFT -contact_augmented_soften -checkpoint_interval 4 -load_max_steps 8
+# shellcheck disable=SC2086
+if $MPI 1 $A $SOFT -contact_augmented_soften -output_dir "$OUT/softstop" -restart "$OUT/softstop/checkpoint.h5" >"$OUT/softstop2.log" 2>&1 </dev/null; then
+  compare "$OUT/stiff_soft/contact.csv" "$OUT/softstop/contact.csv" 10 "augmented, softened penalties, stopped at step 8 and restarted (np=1): contact.csv"
+else not_ok "augmented restart with softened penalties failed"; tail -n 5 "$OUT/softstop2.log" | indent; fi
