@@ -2,7 +2,7 @@
 # Augmented Lagrangian contact (-contact_augmented) and the automatic penalty
 # (-contact_penalty_normal auto): the Coulomb law in slip, the exact Jacobian at fixed multipliers
 # in stick and slip, 1 and 2 ranks, a restart in the middle of an augmented run, the penetration
-# below the tolerance.
+# below the tolerance, the retry at softer penalties (-contact_augmented_soften).
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
