@@ -93,6 +93,7 @@ struct _p_Contact {
   PetscInt     *sgdof;         /* ns*3 global dofs, -1 where constrained                    */
   ContactState *cst_c, *cst_t; /* committed and trial                                        */
   PetscReal    *seed;          /* ns*3 frame seed of the current Newton iteration (eqs 28-30) */
+  PetscReal    *seedn;         /* ns*3 the normal whose tangent plane holds the seed (0: none)  */
   PetscBool    *has_seed;
   PetscReal     lambda_c;      /* load parameter of the committed state                      */
   PetscReal     search;        /* pairing distance                                           */
@@ -727,6 +728,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     if (mark[v] && m->vowned[v]) contact->ns++;
   PetscCall(PetscMalloc1(contact->ns * nt + 1, &contact->tmask));
   PetscCall(PetscMalloc4(contact->ns, &contact->slave, 3 * contact->ns, &contact->sgdof, 3 * contact->ns, &contact->seed, contact->ns, &contact->has_seed));
+  PetscCall(PetscCalloc1(3 * contact->ns + 1, &contact->seedn));
   PetscCall(PetscCalloc2(contact->ns, &contact->active_prev, contact->ns, &contact->tN_prev));
   PetscCall(PetscMalloc1(contact->ns, &contact->pmemo));
   PetscCall(PetscCalloc2(contact->ns, &contact->cst_c, contact->ns, &contact->cst_t));
@@ -860,6 +862,7 @@ PetscErrorCode ContactDestroy(Contact *c)
   if (!contact) PetscFunctionReturn(0);
   if (contact->ntools && contact->mesh) {
     PetscCall(PetscFree4(contact->slave, contact->sgdof, contact->seed, contact->has_seed));
+    PetscCall(PetscFree(contact->seedn));
     PetscCall(PetscFree2(contact->active_prev, contact->tN_prev));
     PetscCall(PetscFree(contact->pmemo));
     PetscCall(PetscFree2(contact->cst_c, contact->cst_t));
@@ -882,6 +885,18 @@ static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, Petsc
 {
   const ContactState *cc = &contact->cst_c[i];
   return (contact->keep && (contact->keep > 1 || !(mu > 0)) && cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool == tool) ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* the committed normal of node i (0 when it carries no normal force): f - f_T = t_N n */
+static void CommittedNormal(const ContactState *cc, double n[3])
+{
+  double a[3], na;
+  n[0] = n[1] = n[2] = 0;
+  if (!(cc->status != CONTACT_OPEN && cc->has_frame && cc->tN > 0)) return;
+  for (int k = 0; k < 3; k++) a[k] = cc->f[k] - cc->fT[k];
+  na = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  if (!(na > 0)) return;
+  for (int k = 0; k < 3; k++) n[k] = a[k] / na;
 }
 
 PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lambda, PetscBool from_committed)
@@ -912,6 +927,8 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
       contact->has_seed[i] = (contact->cst_c[i].has_frame && contact->cst_c[i].status != CONTACT_OPEN) ? PETSC_TRUE : PETSC_FALSE;
       if (contact->has_seed[i])
         for (int k = 0; k < 3; k++) contact->seed[3 * i + k] = contact->cst_c[i].t1[k];
+      /* the committed normal, whose tangent plane holds the committed t1: f - f_T = t_N n */
+      CommittedNormal(cc, contact->seedn + 3 * i);
     }
     NodePosition(contact, i, u, y);
     tool = PairNode(contact, i, y, lambda, &pr);
@@ -920,17 +937,39 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
       continue;
     }
     if (!from_committed) {
-      /* start of a Newton iteration: eq 30, t2 = n x t1(previous iteration), t1 = t2 x n, for the
-         nodes in contact; a node out of contact forgets its frame */
+      /* start of a Newton iteration: eq 30 for the nodes in contact, t2 = n x t1, t1 = t2 x n,
+         with t1 the previous iteration's carried to the new normal by the rotation between the
+         normals (ContactFrameCarry: the carried traction does not depend on the frame's
+         orientation); a node out of contact forgets its frame, but for one pressed in the
+         committed state (below) */
       const double lN    = contact->lam_tool[i] == tool ? contact->lam[3 * i] : 0;
       const ContactLaw nl = NodeLaw(contact, i, tool);
       const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta) || Held(contact, i, tool, nl.mu)) ? PETSC_TRUE : PETSC_FALSE;
-      if (in && contact->has_seed[i] && !ContactFrame(pr.n, contact->seed + 3 * i, t1, t2))
-        for (int k = 0; k < 3; k++) contact->seed[3 * i + k] = t1[k];
-      else if (!in) contact->has_seed[i] = PETSC_FALSE;
+      double *s = contact->seed + 3 * i, *sn = contact->seedn + 3 * i;
+      if (in && contact->has_seed[i]) {
+        double r[3];
+        ContactFrameCarry(sn, pr.n, s, r);
+        if (!ContactFrame(pr.n, r, t1, t2)) {
+          for (int k = 0; k < 3; k++) {
+            s[k]  = t1[k];
+            sn[k] = pr.n[k];
+          }
+        }
+      } else if (!in && contact->lam_tool[i] < 0) contact->has_seed[i] = PETSC_FALSE;
+      /* a node pressed in the committed state keeps its frame (and the normal it belongs to)
+         while an iterate lifts it off: its committed tangential multipliers are components on
+         that frame, and a new chord would turn them by an arbitrary angle (the converged state
+         then depended on the iterates' path) */
     }
-    if (!contact->has_seed[i]) { /* first contact: the chord of eq 28 */
-      Chord(contact, tool, &pr, contact->seed + 3 * i);
+    if (!contact->has_seed[i]) { /* first contact: the chord of eq 28 (t1 its projection) */
+      double *s = contact->seed + 3 * i, *sn = contact->seedn + 3 * i;
+      Chord(contact, tool, &pr, s);
+      if (!ContactFrame(pr.n, s, t1, t2))
+        for (int k = 0; k < 3; k++) {
+          s[k]  = t1[k];
+          sn[k] = pr.n[k];
+        }
+      else sn[0] = sn[1] = sn[2] = 0;
       contact->has_seed[i] = PETSC_TRUE;
     }
   }
