@@ -943,8 +943,9 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
       /* start of a Newton iteration: eq 30 for the nodes in contact, t2 = n x t1, t1 = t2 x n,
          with t1 the previous iteration's carried to the new normal by the rotation between the
          normals (ContactFrameCarry: the carried traction does not depend on the frame's
-         orientation); a node out of contact forgets its frame, but for one pressed in the
-         committed state (below) */
+         orientation); a node out of contact forgets its frame (one pressed in the committed
+         state too: its committed tangential multipliers are then read on the new chord, an open
+         question, doc/performance.md) */
       const double lN    = contact->lam_tool[i] == tool ? contact->lam[3 * i] : 0;
       const ContactLaw nl = NodeLaw(contact, i, tool);
       const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta) || Held(contact, i, tool, nl.mu)) ? PETSC_TRUE : PETSC_FALSE;
@@ -958,11 +959,7 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
             sn[k] = pr.n[k];
           }
         }
-      } else if (!in && contact->lam_tool[i] < 0) contact->has_seed[i] = PETSC_FALSE;
-      /* a node pressed in the committed state keeps its frame (and the normal it belongs to)
-         while an iterate lifts it off: its committed tangential multipliers are components on
-         that frame, and a new chord would turn them by an arbitrary angle (the converged state
-         then depended on the iterates' path) */
+      } else if (!in) contact->has_seed[i] = PETSC_FALSE;
     }
     if (!contact->has_seed[i]) { /* first contact: the chord of eq 28 (t1 its projection) */
       double *s = contact->seed + 3 * i, *sn = contact->seedn + 3 * i;
