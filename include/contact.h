@@ -131,7 +131,12 @@ PetscErrorCode ContactChatter(Contact c, PetscInt *count, PetscInt *node);
 /* keep 1 (nodes on frictionless tools) or 2 (every tool): every such node pressed in the
    committed state (in contact with a normal force) and paired with the same tool now is closed
    whatever its gap, below the tool as always, off it with the normal force continued linearly,
-   t_N = lN - K_N g < 0 (bilateral), until it is ended (0: off; the stepper ends it before the first line search) */
+   t_N = lN - K_N g < 0 (bilateral), until it is ended (0: off; the stepper ends it before the first line search).
+   With 2, a held node on a frictional tool keeps the friction of its committed force (the cone
+   mu t_N,committed, whatever the gap) and is held tangentially by a spring K_T (I - n n^T)
+   anchored at its position when the frame seeds were last set (the predictor), and a node not
+   pressed on its tool in the committed state (entering contact) has no friction until the keep
+   ends. */
 PetscErrorCode ContactKeepCommitted(Contact c, PetscInt keep);
 PetscErrorCode ContactGetToolResult(Contact c, PetscInt tool, PetscReal lambda, ContactToolResult *r);
 /* multiplicity of the model (force_full = force * symmetry) */

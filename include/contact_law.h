@@ -30,6 +30,17 @@ typedef struct {
    (numerically) parallel to n. */
 int ContactFrame(const double n[3], const double s[3], double t1[3], double t2[3]);
 
+/* The frame carried from the normal n0 (of the previous iterate, or of the committed state) to
+   the normal n: r = R s with R the rotation about n0 x n that takes n0 to n (Rodrigues:
+   r = c s + k x s + k (k . s)/(1 + c), k = n0 x n, c = n0 . n). The tangential multipliers are
+   components on the frame; R carries t1 and t2 alike, so the traction they stand for is carried
+   whatever the frame's orientation in the plane. The projection of t1 on the new plane alone (eq 30
+   with the previous t1 as seed) turns the frame by an angle of second order in the normal's turn
+   that depends on that orientation: the carried traction then depended on the arbitrary frame (the
+   chord at a sphere's pole), and a symmetric problem lost its symmetry. Returns 0, or 1 (r = s, the
+   projection is left to ContactFrame) when n0 is zero (unknown) or turned by more than 120 degrees. */
+int ContactFrameCarry(const double n0[3], const double n[3], const double s[3], double r[3]);
+
 /* Return map of the tangential pressure (eqs 14-18). Inputs: committed local components tTn,
    local slip increment dg, normal pressure tN >= 0. Output tT, and the status (stick/slip).
    When Y is not NULL, the consistent tangent d tT / d(dg_1, dg_2, penetration) (2x3, row-major),

@@ -319,6 +319,55 @@ int main(void)
     TU_CHECK(worstorth < 1e-14, "frame recurrence: t1, t2, n orthonormal to %.1e", worstorth);
     TU_CHECK(worstopp > 1 - 1e-9, "friction force opposite to the tangential slip: smallest cos(-f, ds_T) = %.12f", worstopp);
   }
+  /* the frame carried from n0 to n (ContactFrameCarry): closed form for n0 = z, n turned by th
+     about y (x -> (cos th, 0, -sin th), y -> y); and for random n0, n and two frames of the same
+     plane, a traction given by its components carries to the same vector (frame-independent),
+     in the new plane, with its length; the projection (eq 30) turns it by an angle that depends
+     on the frame */
+  {
+    const double th = 0.3, z[3] = {0, 0, 1}, nt[3] = {sin(th), 0, cos(th)}, ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+    double       rx[3], ry[3], worst = 0, worstproj = 0;
+    int          fb = ContactFrameCarry(z, nt, ex, rx) + ContactFrameCarry(z, nt, ey, ry);
+    const double err = fmax(fmax(fabs(rx[0] - cos(th)), fabs(rx[1])), fmax(fabs(rx[2] + sin(th)), fmax(fabs(ry[0]), fmax(fabs(ry[1] - 1), fabs(ry[2])))));
+    for (int k = 0; k < 200; k++) {
+      double n0[3] = {urand(), urand(), urand()}, n[3], a[3], t1[3], t2[3], u1[3], u2[3], c1[3], c2[3], d1[3], d2[3], p1[3], p2[3], q1[3], q2[3];
+      const double al = urand(), be = urand(), l0 = norm3(n0);
+      for (int i = 0; i < 3; i++) {
+        n0[i] /= l0;
+        n[i] = n0[i] + 0.4 * urand(); /* a turn of up to about 35 degrees */
+        a[i] = urand();
+      }
+      const double ln = norm3(n);
+      for (int i = 0; i < 3; i++) n[i] /= ln;
+      ContactFrame(n0, a, t1, t2); /* two frames of the plane of n0 */
+      for (int i = 0; i < 3; i++) a[i] = urand();
+      ContactFrame(n0, a, u1, u2);
+      fb += ContactFrameCarry(n0, n, t1, c1) + ContactFrameCarry(n0, n, u1, d1);
+      ContactFrame(n, c1, c1, c2); /* the frames now: t2 = n x t1 */
+      ContactFrame(n, d1, d1, d2);
+      ContactFrame(n, t1, p1, p2); /* the projection */
+      ContactFrame(n, u1, q1, q2);
+      /* the traction al t1 + be t2 = (al t1 + be t2).u1 u1 + (...).u2 u2 in the second frame */
+      double v[3], ac, bc, cv[3], dv[3], pv[3], qv[3];
+      for (int i = 0; i < 3; i++) v[i] = al * t1[i] + be * t2[i];
+      ac = dot(v, u1);
+      bc = dot(v, u2);
+      for (int i = 0; i < 3; i++) {
+        cv[i] = al * c1[i] + be * c2[i];
+        dv[i] = ac * d1[i] + bc * d2[i];
+        pv[i] = al * p1[i] + be * p2[i];
+        qv[i] = ac * q1[i] + bc * q2[i];
+      }
+      const double e[3] = {cv[0] - dv[0], cv[1] - dv[1], cv[2] - dv[2]}, ep[3] = {pv[0] - qv[0], pv[1] - qv[1], pv[2] - qv[2]};
+      worst     = fmax(worst, fmax(norm3(e), fmax(fabs(dot(cv, n)), fabs(norm3(cv) - norm3(v)))) / norm3(v));
+      worstproj = fmax(worstproj, norm3(ep) / norm3(v));
+    }
+    const double zero[3] = {0, 0, 0};
+    double       r0[3];
+    TU_CHECK(err < 1e-15 && fb == 0, "frame carried from n0 to n: the rotation about n0 x n, x -> (cos th, 0, -sin th), y -> y to %.1e", err);
+    TU_CHECK(worst < 1e-13 && worstproj > 1e-3, "frame carried: 200 random turns, a traction carries to the same vector in the new plane with its length whatever the frame (%.1e; by projection the frames disagree by %.2f)", worst, worstproj);
+    TU_CHECK(ContactFrameCarry(zero, nt, ex, r0) == 1 && r0[0] == 1 && r0[1] == 0 && r0[2] == 0, "frame carried: without n0 the seed is left to the projection");
+  }
   /* tributary areas of a face: a plane trapezoid against the closed form a_i = J0 + (J1 xi_i + J2 eta_i)/3
      (J = J0 + J1 xi + J2 eta: here 1.5 - 0.5 eta, so 5/3 at the long side, 4/3 at the short), rotated
      and moved in space; a warped face (a cylinder strip) sums to its area to the quadrature error */

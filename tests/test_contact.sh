@@ -47,6 +47,11 @@ for tool in plane sphere coons sphere_area; do
       pycheck snes_test_jacobian "$OUT/$name.log" 10 1e-5 "with contact on a $tool, $tan tangent" --contact "$OUT/$name"
   done
 done
+#    the same with the committed contact set held in the first iteration on the frictional sphere
+#    too (-newton_keep_contact all): the held nodes' friction (cone of the committed force, a
+#    tangential spring anchored at the predictor) and the entering nodes without friction
+atrito 1 jac_sphere_keepall -options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 -newton_keep_contact all -snes_test_jacobian &&
+  pycheck snes_test_jacobian "$OUT/jac_sphere_keepall.log" 10 1e-5 "with contact on a sphere, the committed contact set held on it in the first iteration (-newton_keep_contact all)" --contact "$OUT/jac_sphere_keepall"
 #    the first iteration of a step holds the committed contact set (-newton_keep_contact, default
 #    on frictionless tools): its Jacobian is tested against the held residual (the seed punch to
 #    step 17, where lightly pressed nodes stand off the punch at the predictor)

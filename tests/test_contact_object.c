@@ -205,6 +205,28 @@ int main(int argc, char **argv)
       for (PetscInt v = 0; v < s.m.nv; v++)
         if (s.m.X[3 * v + 2] == 0 && s.m.vowned[v] && s.m.X[3 * v] != 1) err = PetscMax(err, fabs(PetscRealPart(f[s.m.vloff[v] + 2]) - (mu > 0 ? 0 : KN * g)) / (KN * g));
       CHECK_ALL(err < 1e-12, "mu %g, keep 1 (frictionless tools): the lifted nodes %s (relative error %.1e)", (double)mu, mu > 0 ? "are open" : "are held", err);
+      /* keep 2, a node entering contact (the 3 at x = 1 only touched in the committed state): no
+         friction while the keep lasts, the stick force K_T ds once it has ended; the 6 pressed
+         nodes stick throughout */
+      if (mu > 0) {
+        const double ds = 1e-4, pz = 0.02;
+        double       e2[2] = {0, 0};
+        for (int pass2 = 0; pass2 < 2; pass2++) {
+          Displace(&s.m, u, -pen, -pz);
+          for (PetscInt v = 0; v < s.m.nv; v++)
+            if (s.m.X[3 * v + 2] == 0) u[s.m.vloff[v]] = ds;
+          PetscCall(ContactKeepCommitted(s.c, pass2 ? 0 : 2));
+          PetscCall(PetscArrayzero(f, nloc));
+          PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+          for (PetscInt v = 0; v < s.m.nv; v++)
+            if (s.m.X[3 * v + 2] == 0 && s.m.vowned[v]) {
+              const double fx = PetscRealPart(f[s.m.vloff[v]]), want = (s.m.X[3 * v] == 1 && !pass2) ? 0 : KT * ds;
+              e2[pass2] = PetscMax(e2[pass2], fabs(fx - want) / (KT * ds));
+            }
+        }
+        PetscCall(ContactKeepCommitted(s.c, 0));
+        CHECK_ALL(nfail == 0 && e2[0] < 1e-9 && e2[1] < 1e-9, "mu %g, keep 2: a node entering contact has no friction while the keep lasts, K_T ds after; the pressed ones K_T ds throughout (relative errors %.1e, %.1e)", (double)mu, e2[0], e2[1]);
+      }
       PetscCall(MatDestroy(&Jd));
       PetscCall(PetscFree(cv));
     }

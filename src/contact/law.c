@@ -44,6 +44,21 @@ int ContactFrame(const double n[3], const double s[3], double t1[3], double t2[3
   return 0;
 }
 
+int ContactFrameCarry(const double n0[3], const double n[3], const double s[3], double r[3])
+{
+  const double c = n0[0] * n[0] + n0[1] * n[1] + n0[2] * n[2];
+  double       k[3], kxs[3], ks;
+  if (!(n0[0] * n0[0] + n0[1] * n0[1] + n0[2] * n0[2] > 0.5) || !(c > -0.5)) { /* no n0 (zero) or a turn by more than 120 degrees: the projection */
+    for (int j = 0; j < 3; j++) r[j] = s[j];
+    return 1;
+  }
+  cross(n0, n, k);
+  cross(k, s, kxs);
+  ks = k[0] * s[0] + k[1] * s[1] + k[2] * s[2];
+  for (int j = 0; j < 3; j++) r[j] = c * s[j] + kxs[j] + k[j] * ks / (1 + c);
+  return 0;
+}
+
 int ContactReturnMap(const ContactLaw *law, const double tTn[2], const double dg[2], double tN, double tT[2], double *Y)
 {
   if (law->mu == 0.0) { /* frictionless: no tangential pressure at all */
