@@ -74,6 +74,8 @@ struct _p_Contact {
   ContactLaw law;
   PetscBool  per_area;     /* K_N, K_T per unit area, times each node's tributary area        */
   PetscBool  fd;           /* per-node finite-difference tangent instead of the analytic one  */
+  PetscBool  frame_rotate; /* -contact_frame_carry rotation: eq 30's seed carried by the rotation
+                              between the normals (ContactFrameCarry); else the paper's eq 30 */
   PetscReal  search_opt;   /* pairing: skip a tool whose box is farther than this (<= 0: auto) */
   PetscReal  symmetry;     /* multiplicity of the model (0: from the mesh)                    */
   PetscReal  E_body;       /* the body's Young's modulus (ContactSetYoungModulus; 0: unknown)   */
@@ -540,6 +542,12 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     PetscCall(PetscOptionsEList("-contact_tangent", "Contact tangent: analytic (with curvature) or per-node finite differences", NULL, tang, 2, tang[0], &t, NULL));
     c->fd = t == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
+  {
+    const char *carry[] = {"projection", "rotation", "ContactFrameCarry", "CFC_", NULL};
+    PetscInt    t       = 0;
+    PetscCall(PetscOptionsEList("-contact_frame_carry", "How eq 30 carries a node's frame to the next iterate's normal: projection (the previous t1 projected on the new plane, eqs 28-30 as published) or rotation (t1 turned by the rotation between the normals; symmetric problems stay symmetric with -newton_keep_contact all)", "doc/contact.md", carry, 2, carry[0], &t, NULL));
+    c->frame_rotate = t == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(PetscOptionsReal("-contact_search_distance", "Pairing: tools farther than this from a node are skipped (default: 5% of the largest tool box)", NULL, c->search_opt, &c->search_opt, NULL));
   PetscCall(PetscOptionsReal("-model_symmetry", "Multiplicity of the model: force_full = force * multiplicity (default 4 for the quarter blank, else 1)", NULL, c->symmetry, &c->symmetry, NULL));
   PetscCheck(c->symmetry == 0 || c->symmetry >= 1, comm, PETSC_ERR_USER_INPUT, "-model_symmetry %g must be >= 1", (double)c->symmetry);
@@ -945,8 +953,9 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
     }
     if (!from_committed) {
       /* start of a Newton iteration: eq 30 for the nodes in contact, t2 = n x t1, t1 = t2 x n,
-         with t1 the previous iteration's carried to the new normal by the rotation between the
-         normals (ContactFrameCarry: the carried traction does not depend on the frame's
+         with t1 the previous iteration's (the paper's recurrence, -contact_frame_carry
+         projection) or that t1 carried to the new normal by the rotation between the normals
+         (rotation, ContactFrameCarry: the carried traction does not depend on the frame's
          orientation); a node out of contact forgets its frame (one pressed in the committed
          state too: its committed tangential multipliers are then read on the new chord, an open
          question, doc/performance.md) */
@@ -956,7 +965,9 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
       double *s = contact->seed + 3 * i, *sn = contact->seedn + 3 * i;
       if (in && contact->has_seed[i]) {
         double r[3];
-        ContactFrameCarry(sn, pr.n, s, r);
+        if (contact->frame_rotate) ContactFrameCarry(sn, pr.n, s, r);
+        else
+          for (int k = 0; k < 3; k++) r[k] = s[k];
         if (!ContactFrame(pr.n, r, t1, t2)) {
           for (int k = 0; k < 3; k++) {
             s[k]  = t1[k];
@@ -965,10 +976,11 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
         }
       } else if (!in) contact->has_seed[i] = PETSC_FALSE;
     }
-    if (!contact->has_seed[i]) { /* first contact: the chord of eq 28 (t1 its projection) */
+    if (!contact->has_seed[i]) { /* first contact: the chord of eq 28 (rotation: t1, its projection) */
       double *s = contact->seed + 3 * i, *sn = contact->seedn + 3 * i;
       Chord(contact, tool, &pr, s);
-      if (!ContactFrame(pr.n, s, t1, t2))
+      if (!contact->frame_rotate) sn[0] = sn[1] = sn[2] = 0;
+      else if (!ContactFrame(pr.n, s, t1, t2))
         for (int k = 0; k < 3; k++) {
           s[k]  = t1[k];
           sn[k] = pr.n[k];
