@@ -39,6 +39,7 @@ static PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *f
 static PetscErrorCode MemoryPhase(MPI_Comm comm, PetscBool on, const char *phase, Mat J)
 {
   PetscLogDouble v[2] = {0, 0};
+  PetscBool      aij  = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   if (!on) PetscFunctionReturn(0);
@@ -46,7 +47,8 @@ static PetscErrorCode MemoryPhase(MPI_Comm comm, PetscBool on, const char *phase
   PetscCall(PetscMemoryGetCurrentUsage(&v[1]));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, v, 2, MPIU_PETSCLOGDOUBLE, MPI_SUM, comm));
   PetscCall(PetscPrintf(comm, "memory: after %s: PetscMalloc()ed %.1f MiB, resident %.1f MiB", phase, v[0] / 1048576.0, v[1] / 1048576.0));
-  if (J) {
+  if (J) PetscCall(PetscObjectTypeCompareAny((PetscObject)J, &aij, MATSEQAIJ, MATMPIAIJ, ""));
+  if (aij) { /* (other types, hypre's, may not count their entries) */
     MatInfo info;
     PetscCall(MatGetInfo(J, MAT_GLOBAL_SUM, &info));
     PetscCall(PetscPrintf(comm, "; Jacobian %.0f nonzeros (values and column indices %.1f MiB)", info.nz_allocated, info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt)) / 1048576.0));
