@@ -53,6 +53,85 @@ CUT_RE = re.compile(r"^step \d+ at load .*retrying.*$", re.M)
 PHASE_RE = re.compile(r"^memory: after (.*?): PetscMalloc\(\)ed [\d.]+ MiB, resident ([\d.]+) MiB(?:; Jacobian (\d+) nonzeros)?", re.M)
 FORCE_RE = re.compile(r"^(\w+)\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)\s+[\d.]+\s+([\d.eE+-]+)\s+[\d.]+", re.M)
 
+# Measured by hand on 2026-11-24 (commit 7de706a and the next; 1 rank unless said; -memory_phases,
+# -log_view_memory, -memory_view); kept with the section because the runs take hours to repeat.
+NOTES = """### Where the memory goes
+
+The whole blank, 25 600 hexahedra (4 layers, 97 000 unknowns), one load step of 1 mm, one rank,
+MatSetValues assembly; resident size from `-memory_phases` and `-memory_view`, PETSc's own
+allocations from `-log_view_memory`:
+
+| part | MiB | kB per hexahedron |
+|---|---|---|
+| libraries and MPI (resident before the mesh) | 45 | – (fixed) |
+| mesh: DMPlex of cells and vertices (not interpolated), section, coordinates, cell dof maps | 17 | 0.69 |
+| contact: slave nodes, seeds, tributary areas, tool masks | 8 | 0.32 |
+| Jacobian, AIJ: 6.63 million nonzeros, values and column indices | 76 | 3.10 |
+| material history, committed and trial (8 points x 7 values x 2) | 22 | 0.90 |
+| vectors (solution, increments, residuals, local forms) and the six rigid-body modes | 15 | 0.6 |
+| GAMG (default) hierarchy kept, GMRES(30) basis | 40 + 23 | 1.6 + 0.9 |
+| GAMG setup, transient (Galerkin products, prolongator smoothing) | 49 | 1.9 |
+| peak: PETSc allocations 245 MiB, resident 335 MiB | | 1.28 GiB per 100 000 hexahedra |
+
+The same with BoomerAMG (`cases/solver_amg_sheet.opts` without the last line): hypre copies the
+AIJ matrix into its own format (another 3.1 kB per hexahedron) and builds its hierarchy: peak
+374 MiB. Assembled straight into hypre's format (`-assembly_mat_type hypre`, now in the options
+file): no AIJ matrix and no copy, peak 288 MiB (1.10 GiB per 100 000 hexahedra with the fixed
+45 MiB, 0.93 without). hypre keeps, beside the assembled matrix, its assembly structure for the
+next MatSetValues (about as large again: the resident size after the setup is 283 MiB against 205
+with AIJ); that is most of what still separates the run from 0.8 GiB.
+
+What was cut and what was not:
+- the coordinate (COO) assembly, the default, keeps per hexahedron 576 values (4.6 kB) in the code
+  and PETSc's permutation and map (4.6 + 2.4 kB): about 12 kB per hexahedron, more than everything
+  else together. The large runs use MatSetValues (`-assembly_coo 0` in the options file); the
+  default stays, the small cases' results do not move.
+- GAMG on the quarter blank: the symmetry planes remove single components, the matrix has no 3 x 3
+  blocks, and PETSc 3.18's GAMG builds its graph from the whole scalar matrix: a copy, its
+  transpose and their sum (MatConvert 81, MatTranspose 79, MatAXPY 81 MiB at 25 476 hexahedra):
+  peak PETSc allocations 400 MB against 257 MB on the whole blank of the same size (3 x 3 blocks,
+  graph 9 times smaller). No option of 3.18 avoids it (the graph is always symmetrised; telling
+  the matrix it is structurally symmetric did not change it). The large runs use the whole blank
+  (`cases/hemisphere_friction_disk.opts`).
+- glibc keeps freed memory of the setup: `MALLOC_MMAP_THRESHOLD_=65536` lowered the peak by 7 %
+  (392 to 365 MB at 25 600 hexahedra with hypre's copy); not used in the measurements.
+- not done: a block (BAIJ) Jacobian would save 1 kB per hexahedron of column indices, and
+  assembling whole rows into hypre (`MAT_SORTED_FULL`) would drop its assembly structure.
+
+### The iteration bound: what was tried
+
+Krylov iterations in one Newton iteration, most over the first load step (1 mm: first contact,
+plasticity starting), whole blank of 9 600 hexahedra unless said:
+
+| preconditioner, Krylov method, relative tolerance | most | Newton its | step s |
+|---|---|---|---|
+| GAMG default (Chebyshev/Jacobi), GMRES, 1e-8 (25 600 hexahedra) | 793 | 4 | 85 |
+| GAMG, SOR x4 smoother, GMRES, 1e-4 | 307 | 4 | 48 |
+| same, graph threshold 0.02 / 0.08 | 238 / 205 | 4 | 26 / 21 |
+| same, threshold 0.08, SOR x8 | 189 | 4 | 59 |
+| same, threshold 0.08, no aggressive coarsening (SOR or Chebyshev/SOR) | linear solve diverged | – | – |
+| BoomerAMG (strength 0.7), GMRES, 1e-4 | 75 | 4 | 7 |
+| + nodal coarsening (6) / + GM-2 interpolation of the rigid-body modes | 82 / 62 | 4 | 6 / 21 (twice the memory) |
+| BoomerAMG HMIS, ext+i, P_max 4 (the file's), GMRES(30), 1e-4 / 1e-3 | 73 / 69 | 4 / 5 | 6 / 6 |
+| same, 1e-3, GMRES(100) / CG | 55 / 56 | 5 | 4 / 6 |
+| **same, 1e-3, BiCGStab** (`cases/solver_amg_sheet.opts`) | **38** | 5 | 8 |
+
+GAMG does not come near the bound on these thin 4-layer sheets (0.25 mm layers, 1.7 mm cells in
+the plane) with contact; BoomerAMG with BiCGStab holds it. One BiCGStab iteration applies the
+matrix and the preconditioner twice: 38 BiCGStab iterations cost about as much as 76 of GMRES.
+
+To 40 mm (`cases/hemisphere_friction_disk.opts`, 9 600 hexahedra, 1 rank): 27 steps, 189 Newton
+iterations, no cut, at most 47 Krylov iterations in a Newton iteration (steps 1 to 27: 38, 31, 22,
+22, 21, 18, 20, 24, 21, 32, 32, 32, 38, 35, 42, 27, 30, 22, 27, 27, 25, 33, 26, 28, 29, 32, 47),
+against LU (MUMPS): 27 steps, 203 Newton iterations, 1 cut (at 35 mm). The punch force at 40 mm:
+79.372 kN against 79.371 kN with LU (+0.001 %); the histories agree to 8 digits to 19 mm, and to
+0.04 % after the LU run's cut changed its step sequence.
+
+Not held: the quarter blank (symmetry planes, no 3 x 3 blocks). `cases/hemisphere_friction_fine.opts`
+(9 600 hexahedra) with the same options takes up to 178 Krylov iterations per Newton iteration (GAMG
+default: 382); the refined and fine quarter cases were not run to 40 mm with it.
+"""
+
 
 def log(msg):
     print(f"[bench_million {time.strftime('%H:%M:%S')}] {msg}", file=sys.stderr, flush=True)
@@ -71,13 +150,13 @@ def tag(p):
     return f"nc{p[0]}_nr{p[1]}_s{p[2]}_t{p[3]:g}_np{p[4]}"
 
 
-def run(binary, p, logdir, timeout):
+def run(binary, p, logdir, timeout, extra=()):
     nc, nr, steps, travel, ranks = p
     cmd = [] if ranks == 1 else ["mpiexec", "--oversubscribe", "-n", str(ranks)]
     cmd += [binary, "-options_file", CASE, "-options_file", SOLVER, "-blank_core_cells", str(nc), "-blank_radial_cells", str(nr),
             "-blank_layers", str(LAYERS), "-tool_punch_motion", f"0,0,{travel:g}", "-load_steps", str(steps), "-load_dt_max", f"{1.0 / steps:.12g}",
             "-output_interval", "0", "-output_dir", os.path.join(logdir, "out_" + tag(p)),
-            "-memory_view", "-memory_phases", "-log_view"]
+            "-memory_view", "-memory_phases", "-log_view"] + list(extra)
     path = os.path.join(logdir, tag(p) + ".log")
     t0 = time.monotonic()
     with open(path, "w") as f:
@@ -178,6 +257,7 @@ def section(rows, timeout):
                  f"{most if most is not None else '–'} against {TARGET_KRYLOV}); {len(big['steps'])} steps to "
                  f"{(big['steps'][-1]['time'] * big['travel']) if big['steps'] else 0:.2f} mm.")
         L.append("")
+    L.append(NOTES)
     return "\n".join(L) + "\n"
 
 
@@ -187,6 +267,7 @@ def main():
     ap.add_argument("--timeout", type=float, default=3000.0, help="seconds per run")
     ap.add_argument("--logdir", default=None, help="keep the logs here")
     ap.add_argument("--reuse", action="store_true", help="read the logs in --logdir instead of running")
+    ap.add_argument("--extra", default="", help="more options for every run (e.g. -snes_monitor -ksp_converged_reason to follow a long run)")
     ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
     a = ap.parse_args()
     points = []
@@ -207,7 +288,7 @@ def main():
             path = os.path.join(logdir, tag(p) + ".log")
             if not a.reuse:
                 log(f"running {tag(p)} ({4 * (p[0] ** 2 + 2 * p[0] * p[1]) * LAYERS} hexahedra)")
-                run(binary, p, logdir, a.timeout)
+                run(binary, p, logdir, a.timeout, a.extra.split())
             if not os.path.exists(path):
                 log(f"{tag(p)}: no log")
                 continue
