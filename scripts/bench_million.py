@@ -28,9 +28,11 @@ import argparse
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 import benchutil
@@ -51,6 +53,8 @@ DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, 
 STEP_RE = re.compile(r"^step\s+(\d+)\s+time\s+([\d.]+)\s+its\s+(\d+)\s+krylov\s+(\d+)\s+\(most\s+(\d+)\)\s+\|R\|\s+(\S+)\s+elapsed\s+([\d.]+) s", re.M)
 CUT_RE = re.compile(r"^step \d+ at load .*retrying.*$", re.M)
 PHASE_RE = re.compile(r"^memory: after (.*?): PetscMalloc\(\)ed [\d.]+ MiB, resident ([\d.]+) MiB(?:; Jacobian (\d+) nonzeros)?", re.M)
+LSOLVE_RE = re.compile(r"Linear solve (converged|did not converge) due to \S+ iterations (\d+)")
+SNESMON_RE = re.compile(r"^\s*(\d+) SNES Function norm")
 FORCE_RE = re.compile(r"^(\w+)\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)\s+[\d.]+\s+([\d.eE+-]+)\s+[\d.]+", re.M)
 
 # Measured by hand on 2026-11-24 (commit 7de706a and the next; 1 rank unless said; -memory_phases,
@@ -127,6 +131,16 @@ against LU (MUMPS): 27 steps, 203 Newton iterations, 1 cut (at 35 mm). The punch
 79.372 kN against 79.371 kN with LU (+0.001 %); the histories agree to 8 digits to 19 mm, and to
 0.04 % after the LU run's cut changed its step sequence.
 
+Growth with the mesh (the whole blank, one step of 1 mm, the options file before
+`-assembly_mat_type hypre`, i.e. with hypre's copy of an AIJ matrix): 9 600 hexahedra at most 38
+Krylov iterations per Newton iteration, 25 600: 49, 100 352 (1 rank): 70, with 4 Newton iterations,
+peak 1.405 GB (1.31 GiB per 100 000 hexahedra), 62.6 s per Newton iteration on a machine whose other
+processes took about half of it (assembly 1.4, BoomerAMG setup 1.4, Krylov 57.9 s; a V-cycle
+0.47 s). The bound of 50 is held to about 25 000 hexahedra; BoomerAMG's iterations grow with the
+mesh here. 250 512 hexahedra on 2 ranks (with `-assembly_mat_type hypre`): 2.44 GiB resident after
+the setup (0.97 GiB per 100 000 hexahedra before the first solve); stopped after 14 minutes before
+its first step ended (the ranks had had 5 minutes of CPU each).
+
 Not held: the quarter blank (symmetry planes, no 3 x 3 blocks). `cases/hemisphere_friction_fine.opts`
 (9 600 hexahedra) with the same options takes up to 178 Krylov iterations per Newton iteration (GAMG
 default: 382); the refined and fine quarter cases were not run to 40 mm with it.
@@ -150,25 +164,81 @@ def tag(p):
     return f"nc{p[0]}_nr{p[1]}_s{p[2]}_t{p[3]:g}_np{p[4]}"
 
 
+def rank_pids(pid):
+    """the atrito processes under pid (itself, or the ranks that mpiexec started)"""
+    out, todo = [], [pid]
+    while todo:
+        q = todo.pop()
+        try:
+            with open(f"/proc/{q}/comm") as f:
+                if f.read().strip() == "atrito":
+                    out.append(q)
+            with open(f"/proc/{q}/task/{q}/children") as f:
+                todo += [int(c) for c in f.read().split()]
+        except (OSError, ValueError):
+            pass
+    return out
+
+
+def vm_kb(pid, key):
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            for line in f:
+                if line.startswith(key + ":"):
+                    return int(line.split()[1])
+    except (OSError, ValueError, IndexError):
+        pass
+    return 0
+
+
 def run(binary, p, logdir, timeout, extra=()):
+    """one run; beside its log, <tag>.ts (seconds since the start, then each line of output, so
+    that a run stopped at the time limit still shows its time per solve) and <tag>.hwm (every 15 s:
+    seconds, the ranks' peak and current resident sizes in kB, summed)"""
     nc, nr, steps, travel, ranks = p
     cmd = [] if ranks == 1 else ["mpiexec", "--oversubscribe", "-n", str(ranks)]
     cmd += [binary, "-options_file", CASE, "-options_file", SOLVER, "-blank_core_cells", str(nc), "-blank_radial_cells", str(nr),
             "-blank_layers", str(LAYERS), "-tool_punch_motion", f"0,0,{travel:g}", "-load_steps", str(steps), "-load_dt_max", f"{1.0 / steps:.12g}",
             "-output_interval", "0", "-output_dir", os.path.join(logdir, "out_" + tag(p)),
             "-memory_view", "-memory_phases", "-log_view"] + list(extra)
-    path = os.path.join(logdir, tag(p) + ".log")
+    base = os.path.join(logdir, tag(p))
+    path = base + ".log"
     t0 = time.monotonic()
-    with open(path, "w") as f:
-        f.write("# " + " ".join(cmd) + "\n")
-        f.flush()
+    proc = subprocess.Popen(["nice"] + cmd, cwd=ROOT, env=benchutil.run_env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True, start_new_session=True)
+    done = threading.Event()
+
+    def sample():
+        with open(base + ".hwm", "w") as h:
+            while not done.wait(15.0):
+                pids = rank_pids(proc.pid)
+                h.write(f"{time.monotonic() - t0:.0f} {sum(vm_kb(q, 'VmHWM') for q in pids)} {sum(vm_kb(q, 'VmRSS') for q in pids)}\n")
+                h.flush()
+
+    def stop():
         try:
-            r = subprocess.run(["nice"] + cmd, cwd=ROOT, env=benchutil.run_env(), stdout=f, stderr=subprocess.STDOUT, timeout=timeout)
-            rc = r.returncode
-        except subprocess.TimeoutExpired:
-            rc = "timeout"
+            os.killpg(proc.pid, signal.SIGTERM)
+        except OSError:
+            pass
+
+    sampler = threading.Thread(target=sample, daemon=True)
+    sampler.start()
+    timer = threading.Timer(timeout, stop)
+    timer.start()
+    with open(path, "w") as f, open(base + ".ts", "w") as ts:
+        f.write("# " + " ".join(cmd) + "\n")
+        for line in proc.stdout:
+            f.write(line)
+            ts.write(f"{time.monotonic() - t0:.1f} {line}")
+            f.flush()
+            ts.flush()
+    proc.wait()
+    timed_out = not timer.is_alive() and time.monotonic() - t0 >= timeout
+    timer.cancel()
+    done.set()
+    sampler.join()
     with open(path, "a") as f:
-        f.write(f"\n# exit {rc} wall {time.monotonic() - t0:.1f} s\n")
+        f.write(f"\n# exit {'timeout' if timed_out else proc.returncode} wall {time.monotonic() - t0:.1f} s\n")
     return path
 
 
@@ -194,6 +264,30 @@ def parse(path, p):
         rec["newton"], rec["solve_s"] = sum(s["its"] for s in rec["steps"]), rec["steps"][-1]["elapsed"]
     if mem:
         rec["rss"] = float(mem.group(1))
+    # the sidecars of run(): the linear solves and Newton iterations as they ended, the peak memory
+    rec["solves"], rec["newton_done"], setup_t = [], 0, None
+    if os.path.exists(path[:-4] + ".ts"):
+        last = None
+        with open(path[:-4] + ".ts") as f:
+            for line in f:
+                t, _, text = line.partition(" ")
+                t = float(t)
+                if text.startswith("memory: after the problem setup"):
+                    setup_t = last = t
+                m = LSOLVE_RE.search(text)
+                if m:
+                    rec["solves"].append(dict(its=int(m.group(2)), converged=m.group(1) == "converged",
+                                              seconds=t - last if last is not None else None))
+                    last = t
+                m = SNESMON_RE.match(text)
+                if m and int(m.group(1)) > 0:
+                    rec["newton_done"] += 1
+    rec["setup_s"] = setup_t
+    if os.path.exists(path[:-4] + ".hwm"):
+        with open(path[:-4] + ".hwm") as f:
+            v = [int(l.split()[1]) for l in f if len(l.split()) == 3]
+        if v and max(v) > 0:
+            rec["hwm"] = 1024.0 * max(v)
     if rec["complete"]:
         fe, je = event_time(out, "SNESFunctionEval"), event_time(out, "SNESJacobianEval")
         pcs, ksp = event_time(out, "PCSetUp"), event_time(out, "KSPSolve")
@@ -220,10 +314,19 @@ def section(rows, timeout):
          "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         n = r.get("newton") or 0
-        most = max((s["most"] for s in r["steps"]), default=None)
-        per100 = fmt_gib(r["rss"] * 1e5 / r["cells"]) if "rss" in r else "–"
-        rss = fmt_gib(r["rss"]) if "rss" in r else "–"
-        spn = f"{r['solve_s'] / n:.1f}" if n else "–"
+        most = max([s["most"] for s in r["steps"]] + [x["its"] for x in r["solves"]], default=None)
+        peak = r.get("rss", r.get("hwm"))
+        per100 = fmt_gib(peak * 1e5 / r["cells"]) if peak else "–"
+        rss = fmt_gib(peak) if peak else "–"
+        sv = [x["seconds"] for x in r["solves"] if x["seconds"] is not None]
+        if r["complete"] and n:
+            spn = f"{r['solve_s'] / n:.1f}"
+        elif sv:  # stopped: the mean time from one linear solve's end to the next (Jacobian, setup, Krylov)
+            spn = f"{sum(sv) / len(sv):.0f} (per linear solve)"
+        else:
+            spn = "–"
+        if not n:
+            n = r["newton_done"]
         if "split" in r and n:
             sp = r["split"]
             split = f"{sp['assembly'] / n:.1f} / {sp['pcsetup'] / n:.1f} / {sp['krylov'] / n:.1f}"
@@ -242,6 +345,15 @@ def section(rows, timeout):
             f"{s['elapsed']:.0f} s elapsed" for s in r["steps"]) + ".")
         L.append("")
     for r in rows:
+        sv = [x for x in r["solves"] if x["seconds"] is not None]
+        if sv:
+            L.append(f"Linear solves of the {r['cells']}-hexahedra run as they ended (the first one of a step is the tangent "
+                     f"predictor's, then one per Newton iteration; {r['newton_done']} Newton iterations done): " + "; ".join(
+                         f"{x['its']} Krylov its{'' if x['converged'] else ' (not converged)'} in {x['seconds']:.0f} s" for x in sv) +
+                     f". Setup (mesh to Jacobian) {r['setup_s']:.0f} s." + (
+                         "" if r["complete"] else f" Peak resident size from the ranks' VmHWM (sampled every 15 s): {fmt_gib(r['hwm'])} GiB." if r.get("hwm") else ""))
+            L.append("")
+    for r in rows:
         if r["phases"]:
             L.append(f"Memory after the setup phases, {r['cells']} hexahedra (resident, summed over the ranks): " + "; ".join(
                 f"{ph} {mib / 1024:.2f} GiB" + (f" (Jacobian {nz} nonzeros)" if nz else "") for ph, mib, nz in r["phases"]) + ".")
@@ -249,8 +361,9 @@ def section(rows, timeout):
     ok = [r for r in rows if "rss" in r]
     big = max(rows, key=lambda r: r["cells"]) if rows else None
     if big:
-        most = max((s["most"] for s in big["steps"]), default=None)
-        per = big["rss"] * 1e5 / big["cells"] / 2**30 if "rss" in big else None
+        most = max([s["most"] for s in big["steps"]] + [x["its"] for x in big["solves"]], default=None)
+        peak = big.get("rss", big.get("hwm"))
+        per = peak * 1e5 / big["cells"] / 2**30 if peak else None
         L.append(f"Against the targets ({big['cells']} hexahedra): memory {'met' if per is not None and per <= TARGET_GIB else 'not met'} "
                  f"({'%.2f' % per if per is not None else 'no'} GiB per 100 000 hexahedra against {TARGET_GIB}); Krylov iterations "
                  f"{'met' if most is not None and most <= TARGET_KRYLOV else 'not met'} (most in one Newton iteration "
