@@ -420,6 +420,8 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   PetscCall(DMCreateLocalVector(m->dm, &pb->Uloc));
   PetscCall(VecDuplicate(pb->Uloc, &pb->Floc));
 
+  PetscCheck(!pb->mat_type[0] || !pb->ntu, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s: not with force-driven tools (their unknowns extend an AIJ matrix); leave it out", pb->mat_type);
+  PetscCheck(!pb->mat_type[0] || !pb->assembly_coo, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s needs the MatSetValues assembly: add -assembly_coo 0", pb->mat_type);
   if (!pb->ntu) {
     if (pb->mat_type[0]) PetscCall(DMSetMatType(m->dm, pb->mat_type));
     PetscCall(DMCreateMatrix(m->dm, &pb->J));
