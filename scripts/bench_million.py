@@ -59,7 +59,15 @@ FORCE_RE = re.compile(r"^(\w+)\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)\s+[\d.]+\s+([\d.e
 
 # Measured by hand on 2026-11-24 (commit 7de706a and the next; 1 rank unless said; -memory_phases,
 # -log_view_memory, -memory_view); kept with the section because the runs take hours to repeat.
-NOTES = """### Where the memory goes
+NOTES = """The 1 010 224-hexahedra run of the table (started 01:48 UTC with `--extra "-snes_monitor
+-ksp_converged_reason"`; the machine was shared, load 4 to 6 on its 2 cores, the ranks had about
+70 % of a core each) was stopped after 41 minutes inside its first step: Newton residual 1359,
+312, 112 after two iterations (the 9 600-hexahedra blank takes 5 in this step). Its linear solves
+took 7 to 20 minutes; at this pace a step of 1 mm needs about an hour and a half. First contact
+is made at once (the pole touches the blank at the start), the onset of plasticity was not reached
+in a converged state.
+
+### Where the memory goes
 
 The whole blank, 25 600 hexahedra (4 layers, 97 000 unknowns), one load step of 1 mm, one rank,
 MatSetValues assembly; resident size from `-memory_phases` and `-memory_view`, PETSc's own
@@ -270,7 +278,7 @@ def parse(path, p):
     # the sidecars of run(): the linear solves and Newton iterations as they ended, the peak memory
     rec["solves"], rec["newton_done"], setup_t = [], 0, None
     if os.path.exists(path[:-4] + ".ts"):
-        last = None
+        last, in_snes = None, False
         with open(path[:-4] + ".ts") as f:
             for line in f:
                 t, _, text = line.partition(" ")
@@ -279,12 +287,16 @@ def parse(path, p):
                     setup_t = last = t
                 m = LSOLVE_RE.search(text)
                 if m:
-                    rec["solves"].append(dict(its=int(m.group(2)), converged=m.group(1) == "converged",
+                    rec["solves"].append(dict(its=int(m.group(2)), converged=m.group(1) == "converged", newton=in_snes,
                                               seconds=t - last if last is not None else None))
                     last = t
                 m = SNESMON_RE.match(text)
+                if m:
+                    in_snes = True  # the solves before a step's first Newton residual are the tangent predictor's
                 if m and int(m.group(1)) > 0:
                     rec["newton_done"] += 1
+                if STEP_RE.match(text) or text.startswith("step "):
+                    in_snes = False
     rec["setup_s"] = setup_t
     if os.path.exists(path[:-4] + ".hwm"):
         with open(path[:-4] + ".hwm") as f:
@@ -317,15 +329,15 @@ def section(rows, timeout):
          "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         n = r.get("newton") or 0
-        most = max([s["most"] for s in r["steps"]] + [x["its"] for x in r["solves"]], default=None)
+        most = max([s["most"] for s in r["steps"]] + [x["its"] for x in r["solves"] if x["newton"]], default=None)
         peak = r.get("rss", r.get("hwm"))
         per100 = fmt_gib(peak * 1e5 / r["cells"]) if peak else "–"
         rss = fmt_gib(peak) if peak else "–"
-        sv = [x["seconds"] for x in r["solves"] if x["seconds"] is not None]
+        sv = [x["seconds"] for x in r["solves"] if x["seconds"] is not None and x["newton"]]
         if r["complete"] and n:
             spn = f"{r['solve_s'] / n:.1f}"
         elif sv:  # stopped: the mean time from one linear solve's end to the next (Jacobian, setup, Krylov)
-            spn = f"{sum(sv) / len(sv):.0f} (per linear solve)"
+            spn = f"{sum(sv) / len(sv):.0f} (from the timestamps)"
         else:
             spn = "–"
         if not n:
@@ -335,7 +347,8 @@ def section(rows, timeout):
             split = f"{sp['assembly'] / n:.1f} / {sp['pcsetup'] / n:.1f} / {sp['krylov'] / n:.1f}"
         else:
             split = "–"
-        status = "complete" if r["complete"] else (f"stopped at the {timeout:.0f} s limit" if r["exit"] == "timeout" else f"exit {r['exit']}")
+        status = "complete" if r["complete"] else (f"stopped at the {timeout:.0f} s limit" if r["exit"] == "timeout" else
+                                                   f"stopped by hand after {r['wall'] / 60:.0f} min" if r["exit"] == "stopped" else f"exit {r['exit']}")
         unk = 3 * r["vertices"] if r["vertices"] else "–"
         L.append(f"| {r['cells']} | {unk} | {r['ranks']} | {r['travel']:g} | {len(r['steps'])} | {n} | {r['cuts']} | "
                  f"{most if most is not None else '–'} | {rss} | {per100} | {spn} | {split} | {status} |")
@@ -352,7 +365,7 @@ def section(rows, timeout):
         if sv:
             L.append(f"Linear solves of the {r['cells']}-hexahedra run as they ended (the first one of a step is the tangent "
                      f"predictor's, then one per Newton iteration; {r['newton_done']} Newton iterations done): " + "; ".join(
-                         f"{x['its']} Krylov its{'' if x['converged'] else ' (not converged)'} in {x['seconds']:.0f} s" for x in sv) +
+                         f"{x['its']} Krylov its{'' if x['converged'] else ' (not converged)'}{'' if x['newton'] else ' (tangent predictor)'} in {x['seconds']:.0f} s" for x in sv) +
                      f". Setup (mesh to Jacobian) {r['setup_s']:.0f} s." + (
                          "" if r["complete"] else f" Peak resident size from the ranks' VmHWM (sampled every 15 s): {fmt_gib(r['hwm'])} GiB." if r.get("hwm") else ""))
             L.append("")
@@ -364,7 +377,7 @@ def section(rows, timeout):
     ok = [r for r in rows if "rss" in r]
     big = max(rows, key=lambda r: r["cells"]) if rows else None
     if big:
-        most = max([s["most"] for s in big["steps"]] + [x["its"] for x in big["solves"]], default=None)
+        most = max([s["most"] for s in big["steps"]] + [x["its"] for x in big["solves"] if x["newton"]], default=None)
         peak = big.get("rss", big.get("hwm"))
         per = peak * 1e5 / big["cells"] / 2**30 if peak else None
         L.append(f"Against the targets ({big['cells']} hexahedra): memory {'met' if per is not None and per <= TARGET_GIB else 'not met'} "
