@@ -31,6 +31,8 @@ typedef struct {
   PetscBool stalled;
   PetscReal stall_fnorm;
   PetscReal fnorm_hist[256];
+  PetscBool kry_on;        /* an iterative linear solver: its Krylov iterations are counted   */
+  PetscInt  kry_sum, kry_max; /* in the step's converged attempt: total, most in one Newton iteration */
   /* the augmented Lagrangian of the current step: Newton solves, failure, last update */
   PetscInt  aug_loops;
   PetscBool aug_failed;

@@ -33,6 +33,30 @@ static PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *f
   return n;
 }
 
+/* -memory_phases: the memory in use after a phase of the setup, summed over the ranks: PetscMalloc()ed
+   (counted with -log_view_memory or -malloc_debug, else 0) and the resident set size (doc/performance.md,
+   "Memory") */
+static PetscErrorCode MemoryPhase(MPI_Comm comm, PetscBool on, const char *phase, Mat J)
+{
+  PetscLogDouble v[2] = {0, 0};
+  PetscBool      aij  = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (!on) PetscFunctionReturn(0);
+  PetscCall(PetscMallocGetCurrentUsage(&v[0]));
+  PetscCall(PetscMemoryGetCurrentUsage(&v[1]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, v, 2, MPIU_PETSCLOGDOUBLE, MPI_SUM, comm));
+  PetscCall(PetscPrintf(comm, "memory: after %s: PetscMalloc()ed %.1f MiB, resident %.1f MiB", phase, v[0] / 1048576.0, v[1] / 1048576.0));
+  if (J) PetscCall(PetscObjectTypeCompareAny((PetscObject)J, &aij, MATSEQAIJ, MATMPIAIJ, ""));
+  if (aij) { /* (other types, hypre's, may not count their entries) */
+    MatInfo info;
+    PetscCall(MatGetInfo(J, MAT_GLOBAL_SUM, &info));
+    PetscCall(PetscPrintf(comm, "; Jacobian %.0f nonzeros (values and column indices %.1f MiB)", info.nz_allocated, info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt)) / 1048576.0));
+  }
+  PetscCall(PetscPrintf(comm, "\n"));
+  PetscFunctionReturn(0);
+}
+
 /* Every module reads its options first (so that -help lists them all and a misspelt one stops
    the run before any work), then the mesh, the conditions, contact and the problem are set up,
    and the stepper runs. */
@@ -50,9 +74,11 @@ static PetscErrorCode Run(PetscBool *stop)
   Results       res;
   PetscBool     help;
   PetscLogStage stage_mesh, stage_setup, stage_solve;
+  PetscBool     memph = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   *stop = PETSC_FALSE;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-memory_phases", &memph, NULL));
   PetscCall(PetscMemzero(&mesh, sizeof(mesh)));
   PetscCall(PetscLogStageRegister("Mesh", &stage_mesh));
   PetscCall(PetscLogStageRegister("Setup", &stage_setup));
@@ -93,6 +119,7 @@ static PetscErrorCode Run(PetscBool *stop)
       PetscCall(BCSetUp(&bcs, &mesh));
     }
     PetscCall(PetscLogStagePop());
+    PetscCall(MemoryPhase(comm, memph, "the mesh and conditions", NULL));
     PetscCall(PetscLogStagePush(stage_setup));
     {
       PetscReal E;
@@ -100,6 +127,7 @@ static PetscErrorCode Run(PetscBool *stop)
       PetscCall(ContactSetYoungModulus(contact, E));
     }
     PetscCall(ContactSetUp(contact, &mesh));
+    PetscCall(MemoryPhase(comm, memph, "the contact setup", NULL));
     if (mesh.size > 1 && ContactNumTools(contact)) { /* the contact work per rank, beside the cells per rank of the mesh line */
       PetscInt ns = ContactNumSlaves(contact), nmax, nsum;
       PetscCallMPI(MPI_Allreduce(&ns, &nmax, 1, MPIU_INT, MPI_MAX, comm));
@@ -108,9 +136,11 @@ static PetscErrorCode Run(PetscBool *stop)
     }
     PetscCall(ProblemSetUp(&pb, &mesh, &bcs, contact, material, element));
     PetscCall(PetscLogStagePop());
+    PetscCall(MemoryPhase(comm, memph, "the problem setup (fields, history, Jacobian)", pb.J));
     PetscCall(PetscLogStagePush(stage_solve));
     PetscCall(StepperRun(&st, &pb, &res));
     PetscCall(PetscLogStagePop());
+    PetscCall(MemoryPhase(comm, memph, "the solve", NULL));
     PetscCall(BCDestroy(&bcs));
     PetscCall(MeshDestroy(&mesh));
   }

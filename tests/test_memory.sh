@@ -37,3 +37,4 @@ md 1 contact -options_file cases/block_sphere.opts -checkpoint_interval 4 -load_
 md 2 restart -options_file cases/block_sphere.opts -restart "$OUT/contact/checkpoint.h5" -output_interval 0
 md 2 coons -options_file cases/hemisphere_friction.opts -tool_punch_motion 0,0,2 -load_steps 2 -assembly_coo 1
 md 2 gmsh -mesh_file tests/data/two_hex.msh -bc_names fix,pull -bc_fix_set left -bc_pull_set right -bc_fix_components x,y,z -bc_pull_components x -bc_pull_values 0.2 -load_steps 2
+md 2 amgdisk -options_file cases/hemisphere_friction_disk.opts -options_file cases/solver_amg_sheet.opts -blank_core_cells 4 -blank_radial_cells 10 -blank_layers 2 -tool_punch_motion 0,0,1 -load_steps 1 -output_interval 0

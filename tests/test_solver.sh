@@ -90,3 +90,19 @@ atrito 1 gamg1 -options_file cases/clamped_beam.opts -output_interval 0 $GAMG
 atrito 2 gamg2 -options_file cases/clamped_beam.opts -output_interval 0 $GAMG
 compare "$OUT/beam1/history.csv" "$OUT/gamg1/history.csv" 8 "clamped beam: GMRES+GAMG (np=1) against LU"
 compare "$OUT/beam1/history.csv" "$OUT/gamg2/history.csv" 8 "clamped beam: GMRES+GAMG (np=2) against LU"
+
+# 9. the large-sheet solver (cases/solver_amg_sheet.opts: BiCGStab + BoomerAMG, the Jacobian in
+#    hypre's format) on the whole blank with friction, at 1 and 2 ranks, against LU: the same
+#    histories (the Newton tolerances decide, not the linear solver's), the Krylov iterations per
+#    step on the progress line and at most 50 in any Newton iteration
+DISK="-options_file cases/hemisphere_friction_disk.opts -blank_core_cells 4 -blank_radial_cells 10 -blank_layers 2 -tool_punch_motion 0,0,3 -load_steps 3 -load_dt_max 0.34 -output_interval 0"
+atrito 1 disk_lu $DISK
+for np in 1 2; do
+  atrito $np disk_amg$np $DISK -options_file cases/solver_amg_sheet.opts &&
+    compare "$OUT/disk_lu/history.csv" "$OUT/disk_amg$np/history.csv" 6 "whole blank with friction: BiCGStab+BoomerAMG (np=$np) against LU"
+  most=$(grep -o "krylov [0-9]* (most [0-9]*)" "$OUT/disk_amg$np.log" | awk '{gsub(/\)/,"",$4); if ($4 > m) m = $4} END {print m + 0}')
+  n=$(grep -c "^step .* krylov [0-9]* (most [0-9]*)" "$OUT/disk_amg$np.log")
+  [ "$n" -ge 3 ] && [ "$most" -ge 1 ] && [ "$most" -le 50 ] && ok "Krylov iterations on the progress line of every step ($n steps, np=$np), at most $most per Newton iteration" ||
+    not_ok "Krylov iterations: $n step lines, most $most (np=$np)"
+done
+! grep -q "krylov" "$OUT/disk_lu.log" && ok "LU runs: no Krylov count on the progress line" || not_ok "LU run prints a Krylov count"

@@ -242,6 +242,14 @@ static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, P
     PetscFunctionReturn(0);
   }
   if (it == 0) pb->stalled = PETSC_FALSE;
+  if (it > 0 && pb->kry_on) { /* the linear solve of the iteration just made */
+    KSP      ksp;
+    PetscInt kits;
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetIterationNumber(ksp, &kits));
+    pb->kry_sum += kits;
+    pb->kry_max = PetscMax(pb->kry_max, kits);
+  }
   if (it < 256) pb->fnorm_hist[it] = fnorm;
   if (*reason == SNES_CONVERGED_ITERATING && w > 0 && it >= w && it < 256 && !(fnorm < pb->stall_factor * pb->fnorm_hist[it - w])) {
     *reason         = SNES_DIVERGED_DTOL;
@@ -348,6 +356,11 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     PetscCall(SNESLineSearchSetPreCheck(ls, KeepEnd, st));
   }
   PetscCall(SNESSetConvergenceTest(snes, NewtonConverged, st, NULL));
+  {
+    PetscBool preonly;
+    PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
+    st->kry_on = preonly ? PETSC_FALSE : PETSC_TRUE;
+  }
   if (st->bcs->nswitch) { /* conditions that stages switch: their rows (bc.h) */
     PetscCall(SNESSetFunction(snes, NULL, StepperFormFunction, st));
     PetscCall(SNESSetJacobian(snes, NULL, NULL, StepperFormJacobian, st));
@@ -451,6 +464,8 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       PetscCall(SeedFrames(pb, pb->U, lam_t));
       its             = 0;
       its_max         = 0;
+      st->kry_sum     = 0;
+      st->kry_max     = 0;
       st->aug_failed  = PETSC_FALSE;
       st->aug_loops   = 0;
       PetscReal atol0 = 0, rtol = 0, stol = 0, eta = 0;
@@ -584,7 +599,9 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         if (aug) PetscCall(PetscSNPrintf(cline, sizeof(cline), "  penetration %.3e mean %.3e  augmentations %" PetscInt_FMT "  multiplier change %.3e", (double)pmax, (double)(npr ? psum / npr : 0), st->aug_loops, (double)st->aug_dlam));
         else PetscCall(PetscSNPrintf(cline, sizeof(cline), "  penetration %.3e mean %.3e", (double)pmax, (double)(npr ? psum / npr : 0)));
       }
-      PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "  |R| %.3e  elapsed %.2f s%s  stage %s\n", step, (double)lam_c, its, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0, cline, sg->name));
+      char kline[96] = ""; /* an iterative linear solver: its iterations in the step, the most in one Newton iteration */
+      if (st->kry_on) PetscCall(PetscSNPrintf(kline, sizeof(kline), "  krylov %" PetscInt_FMT " (most %" PetscInt_FMT ")", st->kry_sum, st->kry_max));
+      PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "%s  |R| %.3e  elapsed %.2f s%s  stage %s\n", step, (double)lam_c, its, kline, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0, cline, sg->name));
     }
     /* growth: on the Newton iterations of the hardest solve of the step (all of them without
        augmentation) */

@@ -345,6 +345,7 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
   PetscCallMPI(MPI_Comm_size(comm, &pb->size));
   PetscOptionsBegin(comm, NULL, "Assembly and linear solver", NULL);
   PetscCall(PetscOptionsBool("-assembly_coo", "Assemble the Jacobian in coordinate form (faster, more memory)", NULL, pb->assembly_coo, &pb->assembly_coo, NULL));
+  PetscCall(PetscOptionsString("-assembly_mat_type", "Matrix type of the Jacobian (default: the mesh's, AIJ; hypre: assembled in hypre's format, which -pc_type hypre then uses without a copy)", NULL, pb->mat_type, pb->mat_type, sizeof(pb->mat_type), NULL));
   {
     const char *ords[] = {"mumps", "nd", "LUOrdering", "LU_ORDERING_", NULL};
     PetscInt    o      = (PetscInt)pb->lu_ordering;
@@ -419,7 +420,12 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   PetscCall(DMCreateLocalVector(m->dm, &pb->Uloc));
   PetscCall(VecDuplicate(pb->Uloc, &pb->Floc));
 
-  if (!pb->ntu) PetscCall(DMCreateMatrix(m->dm, &pb->J));
+  PetscCheck(!pb->mat_type[0] || !pb->ntu, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s: not with force-driven tools (their unknowns extend an AIJ matrix); leave it out", pb->mat_type);
+  PetscCheck(!pb->mat_type[0] || !pb->assembly_coo, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s needs the MatSetValues assembly: add -assembly_coo 0", pb->mat_type);
+  if (!pb->ntu) {
+    if (pb->mat_type[0]) PetscCall(DMSetMatType(m->dm, pb->mat_type));
+    PetscCall(DMCreateMatrix(m->dm, &pb->J));
+  }
   else {
     /* the DM's pattern extended by the rows and columns of the tool unknowns: every slave node
        that may touch a force-driven tool couples with its unknowns (a fixed set) */

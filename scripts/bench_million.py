@@ -1,0 +1,436 @@
+#!/usr/bin/python3
+"""One million hexahedra: memory, Krylov iterations and time per Newton iteration of large sheets.
+
+  /usr/bin/python3 scripts/bench_million.py [--point NC,NR,STEPS,TRAVEL,RANKS ...] [--timeout S]
+                                            [--logdir DIR] [--reuse] [--output doc/performance.md]
+
+What it does
+  1. Runs the friction benchmark on the whole 4-layer blank (cases/hemisphere_friction_disk.opts:
+     analytic tools, contact penalties per unit area; -blank_core_cells NC -blank_radial_cells NR,
+     4 (NC^2 + 2 NC NR) quadrilaterals per layer) with the iterative solver of
+     cases/solver_amg_sheet.opts, no field output, -memory_view -memory_phases -log_view, for each
+     --point: punch travel TRAVEL mm in STEPS equal steps (the first contact and the onset of
+     plasticity are in the first millimetre) on RANKS ranks. Default points: 100 352 hexahedra on
+     1 rank, 250 512 and 1 010 224 on 2 ranks, one step of 1 mm each.
+  2. Reads from each log: the peak resident set size (PETSc's "Maximum (over computational time)
+     process memory", summed over the ranks), the memory after the setup phases, the Newton and
+     Krylov iterations of every step (the progress line's "krylov N (most M)"), the solve time, and
+     from -log_view the time in assembly (SNESFunctionEval + SNESJacobianEval), preconditioner
+     setup (PCSetUp) and Krylov iterations (KSPSolve less PCSetUp).
+  3. Writes the section "## One million hexahedra" of the output file, keeping its other sections.
+
+--logdir keeps the logs (default: a temporary directory, removed); --reuse reads the logs already
+in --logdir instead of running (to rewrite the section from runs made earlier). A run past
+--timeout (default 3000 s) is reported with the steps it completed and no log_view split.
+Standard library only; OPENBLAS_NUM_THREADS=1 and the Open MPI run-as-root variables set.
+"""
+import argparse
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+import benchutil
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CASE = "cases/hemisphere_friction_disk.opts"
+SOLVER = "cases/solver_amg_sheet.opts"
+HEADING = "## One million hexahedra"
+LAYERS = 4
+# (core cells, radial cells, steps, travel mm, ranks): hexahedra = 4 (nc^2 + 2 nc nr) per layer, 4 layers
+POINTS = [(32, 82, 1, 1.0, 1), (51, 128, 1, 1.0, 2), (103, 255, 1, 1.0, 2)]
+TARGET_GIB = 0.8   # peak resident size per 100 000 hexahedra
+TARGET_KRYLOV = 50  # Krylov iterations per Newton iteration
+
+MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)")
+MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
+DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
+STEP_RE = re.compile(r"^step\s+(\d+)\s+time\s+([\d.]+)\s+its\s+(\d+)\s+krylov\s+(\d+)\s+\(most\s+(\d+)\)\s+\|R\|\s+(\S+)\s+elapsed\s+([\d.]+) s", re.M)
+CUT_RE = re.compile(r"^step \d+ at load .*retrying.*$", re.M)
+PHASE_RE = re.compile(r"^memory: after (.*?): PetscMalloc\(\)ed [\d.]+ MiB, resident ([\d.]+) MiB(?:; Jacobian (\d+) nonzeros)?", re.M)
+LSOLVE_RE = re.compile(r"Linear solve (converged|did not converge) due to \S+ iterations (\d+)")
+SNESMON_RE = re.compile(r"^\s*(\d+) SNES Function norm")
+FORCE_RE = re.compile(r"^(\w+)\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)\s+[\d.]+\s+([\d.eE+-]+)\s+[\d.]+", re.M)
+
+# Measured by hand on 2026-11-24 (commit 7de706a and the next; 1 rank unless said; -memory_phases,
+# -log_view_memory, -memory_view); kept with the section because the runs take hours to repeat.
+NOTES = """The 1 010 224-hexahedra run of the table (started 01:48 UTC with `--extra "-snes_monitor
+-ksp_converged_reason"`; the machine was shared, load 4 to 6 on its 2 cores, the ranks had about
+70 % of a core each) was stopped after 41 minutes inside its first step: Newton residual 1359,
+312, 112 after two iterations (the 9 600-hexahedra blank takes 5 in this step). Its linear solves
+took 7 to 20 minutes; at this pace a step of 1 mm needs about an hour and a half. First contact
+is made at once (the pole touches the blank at the start), the onset of plasticity was not reached
+in a converged state.
+
+### Where the memory goes
+
+The whole blank, 25 600 hexahedra (4 layers, 97 000 unknowns), one load step of 1 mm, one rank,
+MatSetValues assembly; resident size from `-memory_phases` and `-memory_view`, PETSc's own
+allocations from `-log_view_memory`:
+
+| part | MiB | kB per hexahedron |
+|---|---|---|
+| libraries and MPI (resident before the mesh) | 45 | – (fixed) |
+| mesh: DMPlex of cells and vertices (not interpolated), section, coordinates, cell dof maps | 17 | 0.69 |
+| contact: slave nodes, seeds, tributary areas, tool masks | 8 | 0.32 |
+| Jacobian, AIJ: 6.63 million nonzeros, values and column indices | 76 | 3.10 |
+| material history, committed and trial (8 points x 7 values x 2) | 22 | 0.90 |
+| vectors (solution, increments, residuals, local forms) and the six rigid-body modes | 15 | 0.6 |
+| GAMG (default) hierarchy kept, GMRES(30) basis | 40 + 23 | 1.6 + 0.9 |
+| GAMG setup, transient (Galerkin products, prolongator smoothing) | 49 | 1.9 |
+| peak: PETSc allocations 245 MiB, resident 335 MiB | | 1.28 GiB per 100 000 hexahedra |
+
+The same with BoomerAMG (`cases/solver_amg_sheet.opts` without the last line): hypre copies the
+AIJ matrix into its own format (another 3.1 kB per hexahedron) and builds its hierarchy: peak
+374 MiB. Assembled straight into hypre's format (`-assembly_mat_type hypre`, now in the options
+file): no AIJ matrix and no copy, peak 288 MiB (1.10 GiB per 100 000 hexahedra with the fixed
+45 MiB, 0.93 without). hypre keeps, beside the assembled matrix, its assembly structure for the
+next MatSetValues (about as large again: the resident size after the setup is 283 MiB against 205
+with AIJ); that is most of what still separates the run from 0.8 GiB.
+
+What was cut and what was not:
+- the coordinate (COO) assembly, the default, keeps per hexahedron 576 values (4.6 kB) in the code
+  and PETSc's permutation and map (4.6 + 2.4 kB): about 12 kB per hexahedron, more than everything
+  else together. The large runs use MatSetValues (`-assembly_coo 0` in the options file); the
+  default stays, the small cases' results do not move.
+- GAMG on the quarter blank: the symmetry planes remove single components, the matrix has no 3 x 3
+  blocks, and PETSc 3.18's GAMG builds its graph from the whole scalar matrix: a copy, its
+  transpose and their sum (MatConvert 81, MatTranspose 79, MatAXPY 81 MiB at 25 476 hexahedra):
+  peak PETSc allocations 400 MB against 257 MB on the whole blank of the same size (3 x 3 blocks,
+  graph 9 times smaller). No option of 3.18 avoids it (the graph is always symmetrised; telling
+  the matrix it is structurally symmetric did not change it). The large runs use the whole blank
+  (`cases/hemisphere_friction_disk.opts`).
+- glibc keeps freed memory of the setup: `MALLOC_MMAP_THRESHOLD_=65536` lowered the peak by 7 %
+  (392 to 365 MB at 25 600 hexahedra with hypre's copy); not used in the measurements.
+- not done: a block (BAIJ) Jacobian would save 1 kB per hexahedron of column indices, and
+  assembling whole rows into hypre (`MAT_SORTED_FULL`) would drop its assembly structure.
+
+### The iteration bound: what was tried
+
+Krylov iterations in one Newton iteration, most over the first load step (1 mm: first contact,
+plasticity starting), whole blank of 9 600 hexahedra unless said:
+
+| preconditioner, Krylov method, relative tolerance | most | Newton its | step s |
+|---|---|---|---|
+| GAMG default (Chebyshev/Jacobi), GMRES, 1e-8 (25 600 hexahedra) | 793 | 4 | 85 |
+| GAMG, SOR x4 smoother, GMRES, 1e-4 (two steps of 0.5 mm) | 307 | 4, 6 | 48, 31 |
+| same, graph threshold 0.02 / 0.08 | 238 / 205 | 4 | 26 / 21 |
+| same, threshold 0.08, SOR x8 | 189 | 4 | 59 |
+| same, threshold 0.08, no aggressive coarsening (SOR or Chebyshev/SOR) | linear solve diverged | – | – |
+| BoomerAMG (strength 0.7), GMRES, 1e-4 | 75 | 4 | 7 |
+| + nodal coarsening (6) / + GM-2 interpolation of the rigid-body modes | 82 / 62 | 4 | 6 / 21 (twice the memory) |
+| BoomerAMG HMIS, ext+i, P_max 4 (the file's), GMRES(30), 1e-4 / 1e-3 | 73 / 69 | 4 / 5 | 6 / 6 |
+| same, 1e-3, GMRES(100) / CG | 55 / 56 | 5 | 4 / 6 |
+| **same, 1e-3, BiCGStab** (`cases/solver_amg_sheet.opts`) | **38** | 5 | 8 |
+
+GAMG does not come near the bound on these thin 4-layer sheets (0.25 mm layers, 1.7 mm cells in
+the plane) with contact; BoomerAMG with BiCGStab holds it. One BiCGStab iteration applies the
+matrix and the preconditioner twice: 38 BiCGStab iterations cost about as much as 76 of GMRES.
+
+To 40 mm (`cases/hemisphere_friction_disk.opts`, 9 600 hexahedra, 1 rank): 27 steps, 189 Newton
+iterations, no cut, at most 47 Krylov iterations in a Newton iteration (steps 1 to 27: 38, 31, 22,
+22, 21, 18, 20, 24, 21, 32, 32, 32, 38, 35, 42, 27, 30, 22, 27, 27, 25, 33, 26, 28, 29, 32, 47),
+against LU (MUMPS): 27 steps, 203 Newton iterations, 1 cut (at 35 mm). The punch force at 40 mm:
+79.372 kN against 79.371 kN with LU (+0.001 %). The two runs take the same steps to 19 mm and
+their forces agree there to 8 digits; from there the step sequences differ (the step growth follows
+the Newton iterations, 6 against 5 at 19 mm) and the punch forces at the common points differ by at
+most 0.04 %.
+
+Growth with the mesh (the whole blank, one step of 1 mm, the options file before
+`-assembly_mat_type hypre`, i.e. with hypre's copy of an AIJ matrix): 9 600 hexahedra at most 38
+Krylov iterations per Newton iteration, 25 600: 49, 100 352 (1 rank): 70, with 4 Newton iterations,
+peak 1.405 GB (1.30 GiB per 100 000 hexahedra), 62.6 s per Newton iteration on a machine whose other
+processes took about half of it (assembly 1.4, BoomerAMG setup 1.4, Krylov 57.9 s; a V-cycle
+0.47 s). The bound of 50 is held to about 25 000 hexahedra; BoomerAMG's iterations grow with the
+mesh here. 250 512 hexahedra on 2 ranks (with `-assembly_mat_type hypre`): 2.44 GiB resident after
+the setup (0.97 GiB per 100 000 hexahedra before the first solve); stopped after 14 minutes before
+its first step ended (the ranks had had 5 minutes of CPU each).
+
+Not held: the quarter blank (symmetry planes, no 3 x 3 blocks). `cases/hemisphere_friction_fine.opts`
+(9 600 hexahedra) with the same options takes up to 178 Krylov iterations per Newton iteration in
+its first two steps of 1 mm (GAMG default: 382), `cases/hemisphere_friction_refined.opts` (3 612
+hexahedra, 3 layers) 141 and 154 in two steps of 2 mm; neither was run to 40 mm with it.
+"""
+
+
+def log(msg):
+    print(f"[bench_million {time.strftime('%H:%M:%S')}] {msg}", file=sys.stderr, flush=True)
+
+
+def event_time(out, name):
+    """max time over the ranks of a -log_view event of the Solve stage (0 when absent)"""
+    part = out.split("--- Event Stage 3: Solve", 1)
+    if len(part) < 2:
+        return 0.0
+    m = re.search(r"^" + re.escape(name) + r"\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)", part[1], re.M)
+    return float(m.group(2)) if m else 0.0
+
+
+def tag(p):
+    return f"nc{p[0]}_nr{p[1]}_s{p[2]}_t{p[3]:g}_np{p[4]}"
+
+
+def rank_pids(pid):
+    """the atrito processes under pid (itself, or the ranks that mpiexec started)"""
+    out, todo = [], [pid]
+    while todo:
+        q = todo.pop()
+        try:
+            with open(f"/proc/{q}/comm") as f:
+                if f.read().strip() == "atrito":
+                    out.append(q)
+            with open(f"/proc/{q}/task/{q}/children") as f:
+                todo += [int(c) for c in f.read().split()]
+        except (OSError, ValueError):
+            pass
+    return out
+
+
+def vm_kb(pid, key):
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            for line in f:
+                if line.startswith(key + ":"):
+                    return int(line.split()[1])
+    except (OSError, ValueError, IndexError):
+        pass
+    return 0
+
+
+def run(binary, p, logdir, timeout, extra=()):
+    """one run; beside its log, <tag>.ts (seconds since the start, then each line of output, so
+    that a run stopped at the time limit still shows its time per solve) and <tag>.hwm (every 15 s:
+    seconds, the ranks' peak and current resident sizes in kB, summed)"""
+    nc, nr, steps, travel, ranks = p
+    cmd = [] if ranks == 1 else ["mpiexec", "--oversubscribe", "-n", str(ranks)]
+    cmd += [binary, "-options_file", CASE, "-options_file", SOLVER, "-blank_core_cells", str(nc), "-blank_radial_cells", str(nr),
+            "-blank_layers", str(LAYERS), "-tool_punch_motion", f"0,0,{travel:g}", "-load_steps", str(steps), "-load_dt_max", f"{1.0 / steps:.12g}",
+            "-output_interval", "0", "-output_dir", os.path.join(logdir, "out_" + tag(p)),
+            "-memory_view", "-memory_phases", "-log_view"] + list(extra)
+    base = os.path.join(logdir, tag(p))
+    path = base + ".log"
+    t0 = time.monotonic()
+    proc = subprocess.Popen(["nice"] + cmd, cwd=ROOT, env=benchutil.run_env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True, start_new_session=True)
+    done = threading.Event()
+
+    def sample():
+        with open(base + ".hwm", "w") as h:
+            while not done.wait(15.0):
+                pids = rank_pids(proc.pid)
+                h.write(f"{time.monotonic() - t0:.0f} {sum(vm_kb(q, 'VmHWM') for q in pids)} {sum(vm_kb(q, 'VmRSS') for q in pids)}\n")
+                h.flush()
+
+    def stop():
+        try:
+            os.killpg(proc.pid, signal.SIGTERM)
+        except OSError:
+            pass
+
+    sampler = threading.Thread(target=sample, daemon=True)
+    sampler.start()
+    timer = threading.Timer(timeout, stop)
+    timer.start()
+    with open(path, "w") as f, open(base + ".ts", "w") as ts:
+        f.write("# " + " ".join(cmd) + "\n")
+        for line in proc.stdout:
+            f.write(line)
+            ts.write(f"{time.monotonic() - t0:.1f} {line}")
+            f.flush()
+            ts.flush()
+    proc.wait()
+    timed_out = not timer.is_alive() and time.monotonic() - t0 >= timeout
+    timer.cancel()
+    done.set()
+    sampler.join()
+    with open(path, "a") as f:
+        f.write(f"\n# exit {'timeout' if timed_out else proc.returncode} wall {time.monotonic() - t0:.1f} s\n")
+    return path
+
+
+def parse(path, p):
+    with open(path) as f:
+        out = f.read()
+    nc, nr, steps, travel, ranks = p
+    rec = dict(point=p, ranks=ranks, travel=travel)
+    me, dn, mem = MESH_RE.search(out), DONE_RE.search(out), MEM_RE.search(out)
+    rec["cells"] = int(me.group(2)) if me else 4 * (nc * nc + 2 * nc * nr) * LAYERS
+    rec["vertices"] = int(me.group(1)) if me else None
+    rec["steps"] = [dict(step=int(m.group(1)), time=float(m.group(2)), its=int(m.group(3)), krylov=int(m.group(4)), most=int(m.group(5)),
+                         elapsed=float(m.group(7))) for m in STEP_RE.finditer(out)]
+    rec["cuts"] = len(CUT_RE.findall(out))
+    rec["phases"] = [(m.group(1), float(m.group(2)), int(m.group(3)) if m.group(3) else None) for m in PHASE_RE.finditer(out)]
+    ex = re.search(r"^# exit (\S+) wall ([\d.]+) s", out, re.M)
+    rec["exit"] = ex.group(1) if ex else "?"
+    rec["wall"] = float(ex.group(2)) if ex else None
+    rec["complete"] = bool(dn and mem)
+    if dn:
+        rec["newton"], rec["solve_s"] = int(dn.group(2)), float(dn.group(4))
+    elif rec["steps"]:
+        rec["newton"], rec["solve_s"] = sum(s["its"] for s in rec["steps"]), rec["steps"][-1]["elapsed"]
+    if mem:
+        rec["rss"] = float(mem.group(1))
+    # the sidecars of run(): the linear solves and Newton iterations as they ended, the peak memory
+    rec["solves"], rec["newton_done"], setup_t = [], 0, None
+    if os.path.exists(path[:-4] + ".ts"):
+        last, in_snes = None, False
+        with open(path[:-4] + ".ts") as f:
+            for line in f:
+                t, _, text = line.partition(" ")
+                t = float(t)
+                if text.startswith("memory: after the problem setup"):
+                    setup_t = last = t
+                m = LSOLVE_RE.search(text)
+                if m:
+                    rec["solves"].append(dict(its=int(m.group(2)), converged=m.group(1) == "converged", newton=in_snes,
+                                              seconds=t - last if last is not None else None))
+                    last = t
+                m = SNESMON_RE.match(text)
+                if m:
+                    in_snes = True  # the solves before a step's first Newton residual are the tangent predictor's
+                if m and int(m.group(1)) > 0:
+                    rec["newton_done"] += 1
+                if STEP_RE.match(text) or text.startswith("step "):
+                    in_snes = False
+    rec["setup_s"] = setup_t
+    if os.path.exists(path[:-4] + ".hwm"):
+        with open(path[:-4] + ".hwm") as f:
+            v = [int(l.split()[1]) for l in f if len(l.split()) == 3]
+        if v and max(v) > 0:
+            rec["hwm"] = 1024.0 * max(v)
+    if rec["complete"]:
+        fe, je = event_time(out, "SNESFunctionEval"), event_time(out, "SNESJacobianEval")
+        pcs, ksp = event_time(out, "PCSetUp"), event_time(out, "KSPSolve")
+        rec["split"] = dict(assembly=fe + je, pcsetup=pcs, krylov=max(ksp - pcs, 0.0))
+    return rec
+
+
+def fmt_gib(b):
+    return f"{b / 2**30:.2f}"
+
+
+def section(rows, timeout):
+    L = [HEADING, "",
+         benchutil.measured_by("bench_million.py", ROOT), "",
+         f"The friction benchmark on the whole blank (`{CASE}`: analytic tools, penalties per unit area, Coulomb 0.15, "
+         f"4 layers), with the iterative solver of `{SOLVER}` (BiCGStab, BoomerAMG, `-ksp_rtol 1e-3`, the Jacobian "
+         "assembled in hypre's format), no field output. Peak resident set size as PETSc reports it (`-memory_view`, summed over the ranks); "
+         "Krylov iterations from the progress line (`krylov N (most M)`: the step's total and the most in one Newton "
+         "iteration; one BiCGStab iteration applies the matrix and the preconditioner twice); time per Newton iteration "
+         "= the solve's time over its Newton iterations, split by `-log_view` into assembly (residuals and Jacobians, "
+         "contact included), preconditioner setup (BoomerAMG's hierarchy) and Krylov iterations.", "",
+         f"| hexahedra | unknowns (about) | ranks | travel mm | steps done | Newton its | cuts | Krylov its per Newton it, most | "
+         f"peak RSS GiB | GiB per 100 000 hex | s per Newton it | assembly / PC setup / Krylov s per Newton it | run |",
+         "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        n = r.get("newton") or 0
+        most = max([s["most"] for s in r["steps"]] + [x["its"] for x in r["solves"] if x["newton"]], default=None)
+        peak = r.get("rss", r.get("hwm"))
+        per100 = fmt_gib(peak * 1e5 / r["cells"]) if peak else "–"
+        rss = fmt_gib(peak) if peak else "–"
+        sv = [x["seconds"] for x in r["solves"] if x["seconds"] is not None and x["newton"]]
+        if r["complete"] and n:
+            spn = f"{r['solve_s'] / n:.1f}"
+        elif sv:  # stopped: the mean time from one linear solve's end to the next (Jacobian, setup, Krylov)
+            spn = f"{sum(sv) / len(sv):.0f} (from the timestamps)"
+        else:
+            spn = "–"
+        if not n:
+            n = r["newton_done"]
+        if "split" in r and n:
+            sp = r["split"]
+            split = f"{sp['assembly'] / n:.1f} / {sp['pcsetup'] / n:.1f} / {sp['krylov'] / n:.1f}"
+        else:
+            split = "–"
+        status = "complete" if r["complete"] else (f"stopped at the {timeout:.0f} s limit" if r["exit"] == "timeout" else
+                                                   f"stopped by hand after {r['wall'] / 60:.0f} min" if r["exit"] == "stopped" else f"exit {r['exit']}")
+        unk = 3 * r["vertices"] if r["vertices"] else "–"
+        L.append(f"| {r['cells']} | {unk} | {r['ranks']} | {r['travel']:g} | {len(r['steps'])} | {n} | {r['cuts']} | "
+                 f"{most if most is not None else '–'} | {rss} | {per100} | {spn} | {split} | {status} |")
+    L.append("")
+    for r in rows:
+        if not r["steps"]:
+            continue
+        L.append(f"Steps of the {r['cells']}-hexahedra run ({r['ranks']} rank{'s' if r['ranks'] > 1 else ''}): " + "; ".join(
+            f"step {s['step']} at {s['time'] * r['travel']:.2f} mm: {s['its']} Newton its, Krylov {s['krylov']} (most {s['most']}), "
+            f"{s['elapsed']:.0f} s elapsed" for s in r["steps"]) + ".")
+        L.append("")
+    for r in rows:
+        sv = [x for x in r["solves"] if x["seconds"] is not None]
+        if sv:
+            L.append(f"Linear solves of the {r['cells']}-hexahedra run as they ended (the first one of a step is the tangent "
+                     f"predictor's, then one per Newton iteration; {r['newton_done']} Newton iterations done): " + "; ".join(
+                         f"{x['its']} Krylov its{'' if x['converged'] else ' (not converged)'}{'' if x['newton'] else ' (tangent predictor)'} in {x['seconds']:.0f} s" for x in sv) +
+                     f". Setup (mesh to Jacobian) {r['setup_s']:.0f} s." + (
+                         "" if r["complete"] else f" Peak resident size from the ranks' VmHWM (sampled every 15 s): {fmt_gib(r['hwm'])} GiB." if r.get("hwm") else ""))
+            L.append("")
+    for r in rows:
+        if r["phases"]:
+            L.append(f"Memory after the setup phases, {r['cells']} hexahedra (resident, summed over the ranks): " + "; ".join(
+                f"{ph} {mib / 1024:.2f} GiB" + (f" (Jacobian {nz} nonzeros)" if nz else "") for ph, mib, nz in r["phases"]) + ".")
+            L.append("")
+    ok = [r for r in rows if "rss" in r]
+    big = max(rows, key=lambda r: r["cells"]) if rows else None
+    if big:
+        most = max([s["most"] for s in big["steps"]] + [x["its"] for x in big["solves"] if x["newton"]], default=None)
+        peak = big.get("rss", big.get("hwm"))
+        per = peak * 1e5 / big["cells"] / 2**30 if peak else None
+        L.append(f"Against the targets ({big['cells']} hexahedra): memory {'met' if per is not None and per <= TARGET_GIB else 'not met'} "
+                 f"({'%.2f' % per if per is not None else 'no'} GiB per 100 000 hexahedra against {TARGET_GIB}); Krylov iterations "
+                 f"{'met' if most is not None and most <= TARGET_KRYLOV else 'not met'} (most in one Newton iteration "
+                 f"{most if most is not None else '–'} against {TARGET_KRYLOV}); {len(big['steps'])} steps to "
+                 f"{(big['steps'][-1]['time'] * big['travel']) if big['steps'] else 0:.2f} mm.")
+        L.append("")
+    L.append(NOTES)
+    return "\n".join(L) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--point", action="append", default=[], help="NC,NR,STEPS,TRAVEL,RANKS (repeatable)")
+    ap.add_argument("--timeout", type=float, default=3000.0, help="seconds per run")
+    ap.add_argument("--logdir", default=None, help="keep the logs here")
+    ap.add_argument("--reuse", action="store_true", help="read the logs in --logdir instead of running")
+    ap.add_argument("--extra", default="", help="more options for every run (e.g. -snes_monitor -ksp_converged_reason to follow a long run)")
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    a = ap.parse_args()
+    points = []
+    for s in a.point:
+        v = s.split(",")
+        if len(v) != 5:
+            sys.exit(f"--point {s}: give NC,NR,STEPS,TRAVEL,RANKS")
+        points.append((int(v[0]), int(v[1]), int(v[2]), float(v[3]), int(v[4])))
+    points = points or POINTS
+    if a.reuse and not a.logdir:
+        sys.exit("--reuse needs --logdir")
+    logdir = a.logdir or tempfile.mkdtemp(prefix="bench_million_")
+    os.makedirs(logdir, exist_ok=True)
+    rows = []
+    try:
+        binary = None if a.reuse else benchutil.build_and_snapshot(ROOT, logdir, "bench_million", log)
+        for p in points:
+            path = os.path.join(logdir, tag(p) + ".log")
+            if not a.reuse:
+                log(f"running {tag(p)} ({4 * (p[0] ** 2 + 2 * p[0] * p[1]) * LAYERS} hexahedra)")
+                run(binary, p, logdir, a.timeout, a.extra.split())
+            if not os.path.exists(path):
+                log(f"{tag(p)}: no log")
+                continue
+            rec = parse(path, p)
+            log(f"{rec['cells']} hexahedra np={p[4]}: {len(rec['steps'])} steps, peak RSS "
+                f"{fmt_gib(rec['rss']) + ' GiB' if 'rss' in rec else '?'}, exit {rec['exit']}")
+            rows.append(rec)
+    finally:
+        if not a.logdir:
+            shutil.rmtree(logdir, ignore_errors=True)
+    benchutil.write_doc_section(a.output, HEADING, section(rows, a.timeout))
+    log(f"wrote {HEADING!r} to {a.output}")
+
+
+if __name__ == "__main__":
+    main()
