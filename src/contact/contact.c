@@ -893,12 +893,14 @@ PetscErrorCode ContactDestroy(Contact *c)
   PetscFunctionReturn(0);
 }
 
+/* the committed state cc was pressed on the tool */
+static inline PetscBool PressedOn(const ContactState *cc, PetscInt tool) { return (cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool == tool) ? PETSC_TRUE : PETSC_FALSE; }
+
 /* node i, paired with tool now (its law: mu), is held closed (ContactKeepCommitted): it was
    pressed on that tool in the committed state */
 static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, PetscInt tool, double mu)
 {
-  const ContactState *cc = &contact->cst_c[i];
-  return (contact->keep && (contact->keep > 1 || !(mu > 0)) && cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool == tool) ? PETSC_TRUE : PETSC_FALSE;
+  return (contact->keep && (contact->keep > 1 || !(mu > 0)) && PressedOn(&contact->cst_c[i], tool)) ? PETSC_TRUE : PETSC_FALSE;
 }
 
 /* the committed normal of node i (0 when it carries no normal force): f - f_T = t_N n */
@@ -1029,7 +1031,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
      normal force K_N g some 100 times the converged one, and so a friction cone that made it
      stick (K_T held it to the tool) where the converged state has it slip; it flipped to slip at
      the second iteration (hemisphere with friction: 8-11 such nodes a step, doc/performance.md). */
-  if (contact->keep == 2 && !(cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool == tool)) law.mu = 0;
+  if (contact->keep == 2 && !PressedOn(cc, tool)) law.mu = 0;
   /* the multipliers of the current solve (the committed state's at the start of a step) */
   if (contact->lam_tool[i] == tool) {
     lN     = contact->lam[3 * i];
@@ -1088,11 +1090,8 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
          kernel's slip tangent carries d(mu t_N)/dy = -mu K_N n^T along the slip (eq 23's third
          column), which the held residual does not have; taken out */
       const double nt = sqrt(st->tT[0] * st->tT[0] + st->tT[1] * st->tT[1]);
-      double       t2[3];
-      t2[0] = pr.n[1] * st->t1[2] - pr.n[2] * st->t1[1];
-      t2[1] = pr.n[2] * st->t1[0] - pr.n[0] * st->t1[2];
-      t2[2] = pr.n[0] * st->t1[1] - pr.n[1] * st->t1[0];
-      if (nt > 0)
+      double       t1[3], t2[3];
+      if (nt > 0 && !ContactFrame(pr.n, st->t1, t1, t2)) /* t2 = n x t1 */
         for (int r = 0; r < 3; r++)
           for (int c = 0; c < 3; c++) K[3 * r + c] += law.mu * law.KN * (st->tT[0] * st->t1[r] + st->tT[1] * t2[r]) / nt * pr.n[c];
     }
