@@ -25,6 +25,7 @@ typedef struct {
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */
   PetscInt  keep_contact;  /* the first Newton iteration holds the committed pressed nodes closed:
                               0 no, 1 on frictionless tools, 2 on every tool (-newton_keep_contact) */
+  PetscBool keep_contact_set; /* given by the option (else: 1, and 2 with -contact_augmented) */
   PetscReal r_true0;       /* |R| at the start of the solve with the true contact law (< 0: none) */
   /* the Newton monitor */
   Problem  *pb;

@@ -500,7 +500,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   PetscCheck(!(c->per_area && c->kauto), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_per_area needs -contact_penalty_normal and -contact_penalty_tangential values per unit area (the automatic penalty, auto, is per node already)");
   c->aug_tol     = -1;
   c->aug_tol_rel = -1;
-  c->aug_mtol    = 0.1;
+  c->aug_mtol    = 0.2;
   c->aug_max     = 20;
   c->aug_grow    = 8;
   c->aug_grow_max = 1e3;
@@ -508,6 +508,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   c->kscale_c    = 1;
   c->aug_keep    = PETSC_TRUE;
   c->aug_inexact = 1e-3;
+  c->aug_soften  = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-contact_augmented", "Augmented Lagrangian: Uzawa updates of the nodal multipliers between Newton solves until the penetration is below the tolerance", NULL, c->aug, &c->aug, NULL));
   {
     PetscBool sa, sr, sm, sx;

@@ -59,7 +59,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
 
   {
     const char *kc[] = {"none", "frictionless", "all", "KeepContact", "KEEP_", NULL};
-    PetscCall(PetscOptionsEList("-newton_keep_contact", "The first Newton iteration of a step (its residual and Jacobian) holds the nodes pressed in the committed state in contact (bilateral) whatever the predictor's gap, the line search and later iterations use the true law: on no tool, on frictionless tools, or on all (on frictional tools with the friction of the committed force and a tangential spring anchored at the predictor, and nodes entering contact without friction in that iteration)", NULL, kc, 3, kc[st->keep_contact], &st->keep_contact, NULL));
+    PetscCall(PetscOptionsEList("-newton_keep_contact", "The first Newton iteration of a step (its residual and Jacobian) holds the nodes pressed in the committed state in contact (bilateral) whatever the predictor's gap, the line search and later iterations use the true law: on no tool, on frictionless tools, or on all (on frictional tools with the friction of the committed force and a tangential spring anchored at the predictor, and nodes entering contact without friction in that iteration); default frictionless, all with -contact_augmented", NULL, kc, 3, kc[st->keep_contact], &st->keep_contact, &st->keep_contact_set));
   }
   PetscCall(PetscOptionsBool("-contact_chatter_check", "Fail (and cut) a step whose last Newton iteration still changed the set of nodes in contact", NULL, st->chatter_check, &st->chatter_check, NULL));
   PetscCall(PetscOptionsBool("-load_kinks", "Land a step on every kink of every curve of the process time (tool paths and amplitudes, condition amplitudes) and never extrapolate across one (default: with stages or an amplitude curve)", NULL, st->kinks, &st->kinks, &st->kinks_set));
@@ -94,6 +94,11 @@ PetscErrorCode StepperSetUp(Stepper *st, BCs *bcs, Contact contact)
     if (tl->amp.n > 0) amp = PETSC_TRUE;
   }
   if (!st->kinks_set) st->kinks = (st->stages.given || amp) ? PETSC_TRUE : PETSC_FALSE;
+  /* with the augmented Lagrangian the first iteration holds the frictional tools' nodes too
+     (-newton_keep_contact all): at the grown penalties the extrapolated predictor's micrometres
+     of gap opened the frictional punch's nodes and the line search cut the first Newton step
+     (doc/contact.md, Augmented Lagrangian) */
+  if (!st->keep_contact_set && ContactAugmented(contact)) st->keep_contact = 2;
   PetscFunctionReturn(0);
 }
 
