@@ -2,7 +2,8 @@
 # Augmented Lagrangian contact (-contact_augmented) and the automatic penalty
 # (-contact_penalty_normal auto): the Coulomb law in slip, the exact Jacobian at fixed multipliers
 # in stick and slip, 1 and 2 ranks, a restart in the middle of an augmented run, the penetration
-# below the tolerance, the retry at softer penalties (-contact_augmented_soften).
+# below the tolerance, the retry at softer penalties (-contact_augmented_soften), the defaults of an
+# augmented run on the seed punch with friction (the iterations against the plain penalty's).
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -26,10 +27,21 @@ for tool in plane sphere; do
     pycheck snes_test_jacobian "$OUT/$name.log" 10 1e-5 "augmented Lagrangian on a $tool" --contact "$OUT/$name"
 done
 
-# 3. block and sphere with friction at 1 and 2 ranks
-atrito 1 sph1 -options_file cases/block_sphere.opts -output_interval 0 $AUG
-atrito 2 sph2 -options_file cases/block_sphere.opts -output_interval 0 $AUG
+# 3. block and sphere with friction at 1 and 2 ranks, the first iteration holding the frictionless
+#    tools' nodes only (-newton_keep_contact frictionless; the default of an augmented run is all).
+#    With the default the symmetric problem acquires a transverse reaction fy of about 1e-7 of the
+#    normal force from the step where the nodes turn from stick to slip (with frictionless: 1e-13),
+#    seeded by round-off and so not the same at 1 and 2 ranks to 8 digits of the 1e-3 floor; its
+#    level is checked (doc/contact.md, Augmented Lagrangian)
+atrito 1 sph1 -options_file cases/block_sphere.opts -output_interval 0 $AUG -newton_keep_contact frictionless
+atrito 2 sph2 -options_file cases/block_sphere.opts -output_interval 0 $AUG -newton_keep_contact frictionless
 compare "$OUT/sph1/contact.csv" "$OUT/sph2/contact.csv" 8 "augmented block and sphere: contact history at np=1 and np=2"
+atrito 1 sphd -options_file cases/block_sphere.opts -output_interval 0 $AUG
+$PY - "$OUT/sphd/contact.csv" "$OUT/sph1/contact.csv" <<'PY'
+import csv, sys
+w = [max(abs(float(r["fy"])) / max(abs(float(r["fz"])), 1e-30) for r in csv.DictReader(open(f))) for f in sys.argv[1:]]
+print(("ok - " if w[0] < 1e-6 else "not ok - ") + f"augmented block and sphere, default keep (all): |fy|/|fz| at most {w[0]:.1e} (< 1e-6; with -newton_keep_contact frictionless {w[1]:.1e})")
+PY
 
 # 4. restart in the middle of an augmented run (the multipliers are in the checkpoint): the same
 #    rows as the uninterrupted run, to 10 digits at 1 rank and 8 digits continued on 2 ranks
@@ -103,14 +115,14 @@ if $MPI 1 $A $HEM -contact_penalty_normal 1e3 -output_dir "$OUT/hstop" -restart 
   compare "$OUT/hsoft/contact.csv" "$OUT/hstop/contact.csv" 10 "augmented hemisphere, K_N 1e3, stopped at step 10 and restarted from step 8 (np=1): contact.csv"
 else not_ok "augmented hemisphere restart failed"; tail -n 5 "$OUT/hstop2.log" | indent; fi
 
-# 9. -contact_augmented_soften: block and sphere at a stiff penalty (K_N 1e7), where Newton fails:
-#    the failed step is retried at the same increment with the penalties 8 times softer (kept for
-#    the next steps), the run ends with fewer cuts than without, the penetration below the
+# 9. -contact_augmented_soften (on by default): block and sphere at a stiff penalty (K_N 1e7), where
+#    Newton fails: the failed step is retried at the same increment with the penalties 8 times softer
+#    (kept for the next steps), the run ends with fewer cuts than without, the penetration below the
 #    tolerance; a restart from a checkpoint after the softening repeats the uninterrupted run (the
 #    factor is in the checkpoint)
 SOFT="-options_file cases/block_sphere.opts -output_interval 0 -contact_penalty_normal 1e7 $AUG"
 # shellcheck disable=SC2086
-atrito 1 stiff_plain $SOFT
+atrito 1 stiff_plain $SOFT -contact_augmented_soften false
 # shellcheck disable=SC2086
 atrito 1 stiff_soft $SOFT -contact_augmented_soften &&
   $PY - "$OUT/stiff_plain.log" "$OUT/stiff_soft.log" "$OUT/stiff_soft/contact.csv" <<'PY'
@@ -128,3 +140,32 @@ atrito_rc 1 softstop $SOFT -contact_augmented_soften -checkpoint_interval 4 -loa
 if $MPI 1 $A $SOFT -contact_augmented_soften -output_dir "$OUT/softstop" -restart "$OUT/softstop/checkpoint.h5" >"$OUT/softstop2.log" 2>&1 </dev/null; then
   compare "$OUT/stiff_soft/contact.csv" "$OUT/softstop/contact.csv" 10 "augmented, softened penalties, stopped at step 8 and restarted (np=1): contact.csv"
 else not_ok "augmented restart with softened penalties failed"; tail -n 5 "$OUT/softstop2.log" | indent; fi
+
+# 10. the seed punch with friction at K_N 1e3 with the augmented Lagrangian's defaults: the first
+#     Newton iteration holds the frictional tools' nodes too (the default -newton_keep_contact is
+#     all in an augmented run: the same history as with the option given, to 10 digits); the punch
+#     force within 0.2 % of the augmented run at K_N 1e5, the Newton iterations at most 1.5 times
+#     the plain penalty run's at K_N 1e3 (doc/contact.md, measurements)
+FRI="-options_file cases/hemisphere_friction.opts -output_interval 0"
+# shellcheck disable=SC2086
+atrito 1 fpen $FRI -contact_penalty_normal 1e3
+# shellcheck disable=SC2086
+atrito 1 faug $FRI -contact_penalty_normal 1e3 -contact_augmented -contact_augmented_tol 1e-3
+# shellcheck disable=SC2086
+atrito 1 fall $FRI -contact_penalty_normal 1e3 -contact_augmented -contact_augmented_tol 1e-3 -newton_keep_contact all
+# shellcheck disable=SC2086
+atrito 1 faug5 $FRI -contact_penalty_normal 1e5 -contact_augmented -contact_augmented_tol 1e-3
+compare "$OUT/faug/contact.csv" "$OUT/fall/contact.csv" 10 "augmented punch with friction: the default keep is -newton_keep_contact all"
+# shellcheck disable=SC2086
+atrito 2 faug52 $FRI -contact_penalty_normal 1e5 -contact_augmented -contact_augmented_tol 1e-3
+compare "$OUT/faug5/contact.csv" "$OUT/faug52/contact.csv" 8 "augmented punch with friction, K_N 1e5, defaults: contact history at np=1 and np=2"
+$PY - "$OUT/fpen.log" "$OUT/faug.log" "$OUT/faug/contact.csv" "$OUT/faug5/contact.csv" <<'PY'
+import csv, re, sys
+its = [int(re.search(r"done: \d+ steps, (\d+) Newton iterations", open(f).read()).group(1)) for f in sys.argv[1:3]]
+rows = [[x for x in csv.DictReader(open(f)) if x["tool"] == "punch"] for f in sys.argv[3:5]]
+f3, f5 = float(rows[0][-1]["force"]), float(rows[1][-1]["force"])
+pen = max(float(x["max_penetration"]) for x in rows[0])
+d = abs(f3 / f5 - 1)
+ok = its[1] <= 1.5 * its[0] and d < 2e-3 and pen <= 1e-3
+print(("ok - " if ok else "not ok - ") + f"augmented punch with friction, K_N 1e3: {its[1]} Newton iterations against the plain penalty's {its[0]} ({its[1] / its[0]:.2f}, at most 1.5), punch force {f3:.2f} N against {f5:.2f} N at K_N 1e5 ({100 * d:.3f} %), largest penetration {pen:.2e} (tolerance 1e-3)")
+PY
