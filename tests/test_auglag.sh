@@ -115,14 +115,14 @@ if $MPI 1 $A $HEM -contact_penalty_normal 1e3 -output_dir "$OUT/hstop" -restart 
   compare "$OUT/hsoft/contact.csv" "$OUT/hstop/contact.csv" 10 "augmented hemisphere, K_N 1e3, stopped at step 10 and restarted from step 8 (np=1): contact.csv"
 else not_ok "augmented hemisphere restart failed"; tail -n 5 "$OUT/hstop2.log" | indent; fi
 
-# 9. -contact_augmented_soften (on by default): block and sphere at a stiff penalty (K_N 1e7), where
-#    Newton fails: the failed step is retried at the same increment with the penalties 8 times softer
-#    (kept for the next steps), the run ends with fewer cuts than without, the penetration below the
+# 9. -contact_augmented_soften: block and sphere at a stiff penalty (K_N 1e7), where Newton fails:
+#    the failed step is retried at the same increment with the penalties 8 times softer (kept for
+#    the next steps), the run ends with fewer cuts than without, the penetration below the
 #    tolerance; a restart from a checkpoint after the softening repeats the uninterrupted run (the
 #    factor is in the checkpoint)
 SOFT="-options_file cases/block_sphere.opts -output_interval 0 -contact_penalty_normal 1e7 $AUG"
 # shellcheck disable=SC2086
-atrito 1 stiff_plain $SOFT -contact_augmented_soften false
+atrito 1 stiff_plain $SOFT
 # shellcheck disable=SC2086
 atrito 1 stiff_soft $SOFT -contact_augmented_soften &&
   $PY - "$OUT/stiff_plain.log" "$OUT/stiff_soft.log" "$OUT/stiff_soft/contact.csv" <<'PY'

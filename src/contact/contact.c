@@ -508,7 +508,6 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   c->kscale_c    = 1;
   c->aug_keep    = PETSC_TRUE;
   c->aug_inexact = 1e-3;
-  c->aug_soften  = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-contact_augmented", "Augmented Lagrangian: Uzawa updates of the nodal multipliers between Newton solves until the penetration is below the tolerance", NULL, c->aug, &c->aug, NULL));
   {
     PetscBool sa, sr, sm, sx;
