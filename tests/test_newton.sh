@@ -3,7 +3,7 @@
 # correction of the extrapolation predictor (-load_predictor_curvature) on the frictionless seed
 # case to 40 mm: the same converged states as the linear extrapolation (contact and reaction
 # forces and reactions to 1e-6, the same steps), fewer Newton iterations (106 against 115 when measured);
-# 0 leaves the run as it was; a value outside [0, 1] is refused with one line naming the option.
+# a run restarted from its checkpoint ends at the same state; 0 leaves the run as it was; a value outside [0, 1] is refused with one line naming the option.
 cd "$(dirname "$0")/.." && . tests/lib.sh
 OUT=$(test_out newton)
 C=cases/hemisphere_frictionless.opts
@@ -42,6 +42,24 @@ PYEOF
     ok "-load_predictor_curvature 0.5: $ih Newton iterations in $sh steps against $il in $sl with the linear extrapolation, no cut" ||
     not_ok "-load_predictor_curvature 0.5: $ih Newton iterations ($ch cuts) against $il"
 }
+
+# a restart: the checkpoint holds two converged states, so the first step after it extrapolates
+# linearly; the converged states are those of the run that went through (to the solver's tolerance)
+atrito_rc 1 stop -options_file $C -output_interval 0 -load_predictor_curvature 0.5 -checkpoint_interval 2 -load_max_steps 7 # stops at step 7 (exit status 1)
+atrito_rc 1 stop -options_file $C -output_interval 0 -load_predictor_curvature 0.5 -checkpoint_interval 2 -restart "$OUT/stop/checkpoint.h5"
+mv "$OUT/stop.log" "$OUT/stop2.log"
+if [ $RC -eq 0 ] && grep -q "restart from .*: step 6," "$OUT/stop2.log" && [ -f "$OUT/half/contact.csv" ]; then
+  $PY - "$OUT/half/contact.csv" "$OUT/stop/contact.csv" <<'PYEOF'
+import csv, sys
+a = [r for r in csv.DictReader(open(sys.argv[1])) if r["tool"] == "punch"]
+b = [r for r in csv.DictReader(open(sys.argv[2])) if r["tool"] == "punch"]
+fa, fb = float(a[-1]["force"]), float(b[-1]["force"])
+d = abs(fa - fb) / abs(fa)
+print(("ok" if a[-1]["time"] == b[-1]["time"] and d < 1e-6 else "not ok") + f" - -load_predictor_curvature 0.5 restarted from step 6: punch force at 40 mm {fb:.6f} against {fa:.6f} N without the restart ({d:.1e} relative, tolerance 1e-6)")
+PYEOF
+else
+  not_ok "-load_predictor_curvature 0.5: the restart from step 6 failed (exit $RC)"; tail -n 3 "$OUT/stop2.log" | indent
+fi
 
 atrito_rc 1 bad -options_file $C -load_predictor_curvature 1.5
 [ $RC -ne 0 ] && [ "$(grep -c 'atrito: error' "$OUT/bad.log")" -eq 1 ] && grep -q -- '-load_predictor_curvature 1.5 must lie in \[0, 1\]' "$OUT/bad.log" &&
