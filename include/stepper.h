@@ -20,6 +20,10 @@ typedef struct {
   PetscReal dt0, dt_min, dt_max, cut, grow;
   PetscInt  grow_its, max_cuts, max_steps;
   Predictor predictor;
+  PetscReal curvature;     /* -load_predictor_curvature: the share of the quadratic term added to
+                              the extrapolation (0: the linear extrapolation)                    */
+  Vec       Uprev2;        /* the converged state before Uprev, at dl_prev2 before it (curvature) */
+  PetscReal dl_prev2;      /* (0: none yet, e.g. after a restart: the step extrapolates linearly)  */
   PetscInt  stall_its;     /* Newton has stalled when |R| did not fall below stall_factor times */
   PetscReal stall_factor;  /* its value stall_its iterations earlier (0: no test)              */
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */
@@ -47,6 +51,10 @@ typedef struct {
   Vec       Uhold;            /* the bases of the holding conditions (BCHold), or NULL         */
 } Stepper;
 
+/* the curvature correction of the extrapolation predictor (predictor.c): U += beta h (h + d1)
+   [Uc, U1, U2], the second divided difference of the last three converged states at the increments
+   d1 (Uc - U1) and d2 (U1 - U2); h the step's increment; W a work vector */
+PetscErrorCode PredictorCurvature(Vec U, Vec Uc, Vec U1, Vec U2, PetscReal h, PetscReal d1, PetscReal d2, PetscReal beta, Vec W);
 /* -load_*, -newton_stall_*, -contact_chatter_check, the stages (-stage_*) */
 PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st);
 /* after every module has read its options: the stages' names against the tools and conditions,

@@ -46,9 +46,12 @@ run output-np1      mpiexec -n 1 bin/test_output -output_dir "$TEST_OUT/output1"
 run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
 run lu-np1          mpiexec -n 1 bin/test_lu
 run lu-np2          mpiexec -n 2 bin/test_lu
+run predictor-np1   mpiexec -n 1 bin/test_predictor
+run predictor-np2   mpiexec -n 2 bin/test_predictor
 run solver          bash tests/test_solver.sh
 run hill48-solver   bash tests/test_hill48.sh
 run contact         bash tests/test_contact.sh
+run newton          bash tests/test_newton.sh
 run auglag          bash tests/test_auglag.sh
 run hertz           bash tests/test_hertz.sh
 run benchmark       bash tests/test_benchmark.sh

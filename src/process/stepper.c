@@ -48,6 +48,8 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
       PetscCall(PetscOptionsEList("-load_predictor", "Start of each step: the committed state, the extrapolation of the last two, the tangent response to the load increment, or auto (extrapolation when there is a previous step, else tangent)", NULL, preds, 4, preds[p], &p, NULL));
       st->predictor = (Predictor)p;
     }
+    PetscCall(PetscOptionsReal("-load_predictor_curvature", "Extrapolation predictor: the share beta of the quadratic term through the last three converged states added to the linear extrapolation (0: linear, 1: quadratic; doc/performance.md, Newton iterations)", NULL, st->curvature, &st->curvature, NULL));
+    PetscCheck(st->curvature >= 0 && st->curvature <= 1, comm, PETSC_ERR_USER_INPUT, "-load_predictor_curvature %g must lie in [0, 1]", (double)st->curvature);
     PetscCheck(st->dt_max > 0 && st->dt_max <= 1, comm, PETSC_ERR_USER_INPUT, "-load_dt_max %g must lie in (0, 1]", (double)st->dt_max);
     PetscCheck(st->dt_min > 0 && st->dt_min <= st->dt0, comm, PETSC_ERR_USER_INPUT, "-load_dt_min %g must lie in (0, first increment %g]", (double)st->dt_min, (double)st->dt0);
     PetscCheck(st->cut > 0 && st->cut < 1, comm, PETSC_ERR_USER_INPUT, "-load_cut_factor %g must lie in (0, 1)", (double)st->cut);
@@ -353,6 +355,9 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(VecDuplicate(pb->U, &R));
   PetscCall(VecDuplicate(pb->U, &W));
+  st->Uprev2   = NULL;
+  st->dl_prev2 = 0; /* also after a restart: the checkpoint holds two states, the first step extrapolates linearly */
+  if (st->curvature > 0) PetscCall(VecDuplicate(pb->U, &st->Uprev2));
   PetscCall(SNESSetConvergenceHistory(snes, rhist, itshist, 256, PETSC_TRUE));
   PetscCall(SNESSetUpdate(snes, NewtonUpdate));
   {
@@ -463,7 +468,12 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         PetscBool ok;
         PetscCall(TangentPredictor(st, pb, R, W, lam_c, h, &ok));
         if (!ok) PetscCall(VecCopy(pb->Uc, pb->U));
-      } else if (extrapolate) PetscCall(VecAXPBYPCZ(pb->U, -h / dl_prev, h / dl_prev, 1.0, pb->Uprev, pb->Uc));
+      } else if (extrapolate) {
+        PetscCall(VecAXPBYPCZ(pb->U, -h / dl_prev, h / dl_prev, 1.0, pb->Uprev, pb->Uc));
+        /* -load_predictor_curvature: the quadratic term through the state before, when that step
+           lies in the same linear piece of every curve (no kink at its end) */
+        if (st->curvature > 0 && st->dl_prev2 > 0 && !AtKink(st, lam_c - dl_prev)) PetscCall(PredictorCurvature(pb->U, pb->Uc, pb->Uprev, st->Uprev2, h, dl_prev, st->dl_prev2, st->curvature, W));
+      }
       pb->lambda     = lam_t;
       pb->bad_status = 0;
       PetscCall(SeedFrames(pb, pb->U, lam_t));
@@ -580,6 +590,12 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         dl = h * st->cut;
       }
     }
+    /* the state before the previous one, for -load_predictor_curvature (ProblemCommit moves Uc to
+       Uprev) */
+    if (st->Uprev2) {
+      PetscCall(VecCopy(pb->Uprev, st->Uprev2));
+      st->dl_prev2 = dl_prev;
+    }
     /* commit the trial states of that evaluation */
     PetscCall(ProblemCommit(pb, lam_t));
     dl_prev = h;
@@ -630,5 +646,6 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(VecDestroy(&R));
   PetscCall(VecDestroy(&W));
   PetscCall(VecDestroy(&st->Uhold));
+  PetscCall(VecDestroy(&st->Uprev2));
   PetscFunctionReturn(0);
 }
