@@ -668,7 +668,7 @@ static inline double BoxBox2(const FacetsNode *n, const double lo[3], const doub
 
 PetscErrorCode FacetsLocalBuild(FacetsData *m)
 {
-  int *vfs, *vf, *nb, stack[128], nbmax = 0, total = 0;
+  int *vfs, *vf, stack[128];
 
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc1((size_t)m->nv + 1, &vfs)); /* the facets around each vertex, increasing */
@@ -685,41 +685,13 @@ PetscErrorCode FacetsLocalBuild(FacetsData *m)
       }
     PetscCall(PetscFree(fill));
   }
-  for (int k = 0; k < m->nv; k++) nbmax = PetscMax(nbmax, vfs[k + 1] - vfs[k]);
-  PetscCall(PetscMalloc1(3 * (size_t)nbmax, &nb));
-  PetscCall(PetscMalloc1((size_t)m->nf + 1, &m->star));
-  for (int pass = 0; pass < 2; pass++) { /* the stars' sizes, then the stars */
-    if (pass == 1) PetscCall(PetscMalloc1((size_t)total, &m->st));
-    total = 0;
-    for (int f = 0; f < m->nf; f++) {
-      int nn = 0;
-      for (int c = 0; c < 3; c++)
-        for (int j = vfs[m->F[3 * f + c]]; j < vfs[m->F[3 * f + c] + 1]; j++) { /* merged, increasing */
-          const int g = vf[j];
-          int       t = nn;
-          while (t > 0 && nb[t - 1] > g) t--;
-          if (t > 0 && nb[t - 1] == g) continue;
-          for (int q = nn; q > t; q--) nb[q] = nb[q - 1];
-          nb[t] = g;
-          nn++;
-        }
-      if (pass == 1) {
-        m->star[f].start = total;
-        for (int t = 0; t < nn; t++) m->st[total + t] = nb[t];
-      }
-      total += nn;
-    }
-  }
-  m->star[m->nf].start = total;
-  m->star[m->nf].clear = 0.0f;
-  m->nst               = total;
-  PetscCall(PetscFree(nb));
-  PetscCall(PetscFree(vfs));
-  PetscCall(PetscFree(vf));
+  m->vfs = vfs;
+  m->vf  = vf;
+  PetscCall(PetscMalloc1((size_t)m->nf, &m->clear));
   for (int f = 0; f < m->nf; f++) {
     double    A[3][3], lo[3], hi[3], h2 = 0.0, cl, cl2;
     int       ns = 0;
-    const int s0 = m->star[f].start, s1 = m->star[f + 1].start;
+    const int *Ff = &m->F[3 * f];
     for (int c = 0; c < 3; c++) Corner(m, f, c, A[c]);
     for (int i = 0; i < 3; i++) {
       lo[i] = fmin(A[0][i], fmin(A[1][i], A[2][i]));
@@ -735,8 +707,8 @@ PetscErrorCode FacetsLocalBuild(FacetsData *m)
       if (n->count > 0) {
         for (int g = n->first; g < n->first + n->count; g++) {
           double B[3][3], bl[3], bh[3], o2 = 0.0;
-          int    in = 0;
-          for (int t = s0; t < s1 && !in; t++) in = m->st[t] == g;
+          int    in = 0; /* in f's star: sharing a vertex with it */
+          for (int c = 0; c < 3 && !in; c++) in = m->F[3 * g + c] == Ff[0] || m->F[3 * g + c] == Ff[1] || m->F[3 * g + c] == Ff[2];
           if (in) continue;
           for (int c = 0; c < 3; c++) Corner(m, g, c, B[c]);
           for (int i = 0; i < 3; i++) { /* the boxes first */
@@ -758,8 +730,8 @@ PetscErrorCode FacetsLocalBuild(FacetsData *m)
       } else cl = cl2 = 0.0; /* too deep: no certificate for this facet */
     }
     cl *= 1.0 - 1e-9; /* the round-off of the distances */
-    m->star[f].clear = (float)cl;
-    if ((double)m->star[f].clear > cl) m->star[f].clear = nextafterf(m->star[f].clear, 0.0f);
+    m->clear[f] = (float)cl;
+    if ((double)m->clear[f] > cl) m->clear[f] = nextafterf(m->clear[f], 0.0f);
   }
   PetscFunctionReturn(0);
 }
@@ -771,25 +743,30 @@ static int LocalClosestCollect(const FacetsData *m, const double y[3], Best *b, 
 {
   const int    f0 = b->f;
   const double R2 = list ? CandidateRadius2(m, b->d2) : b->d2;
-  if (!m->star || f0 == INT_MAX) return 1;
-  if (sqrt(b->d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) >= (double)m->star[f0].clear) return 1;
+  if (!m->clear || f0 == INT_MAX) return 1;
+  if (sqrt(b->d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) >= (double)m->clear[f0]) return 1;
   if (list) *nl = 0;
   {
-    const int j0 = m->star[f0].start, j1 = m->star[f0 + 1].start;
-    for (int j = j0; j < j1; j++) Prefetch(&m->F[3 * m->st[j]]); /* the star's facets, then their vertices: their cache misses overlap */
-    for (int j = j0; j < j1; j++)
-      for (int c = 0; c < 3; c++) Prefetch(&m->V[3 * m->F[3 * m->st[j] + c]]);
-    for (int j = j0; j < j1; j++) {
-      const int k = m->st[j];
-      int       q;
-      double    d2;
-      if (SeenDistance(m, k, y, list != NULL, seen, ns, &q, &d2)) continue;
-      if (Better(d2, k, b)) {
-        b->d2 = d2;
-        b->f  = k;
+    const int *V0 = &m->F[3 * f0];
+    for (int c = 0; c < 3; c++) /* the star's facets, then their vertices: their cache misses overlap */
+      for (int j = m->vfs[V0[c]]; j < m->vfs[V0[c] + 1]; j++) Prefetch(&m->F[3 * m->vf[j]]);
+    for (int c = 0; c < 3; c++)
+      for (int j = m->vfs[V0[c]]; j < m->vfs[V0[c] + 1]; j++)
+        for (int i = 0; i < 3; i++) Prefetch(&m->V[3 * m->F[3 * m->vf[j] + i]]);
+    for (int c = 0; c < 3; c++)
+      for (int j = m->vfs[V0[c]]; j < m->vfs[V0[c] + 1]; j++) {
+        const int  k = m->vf[j], *Fk = &m->F[3 * k];
+        int        q, dup = 0;
+        double     d2;
+        for (int c2 = 0; c2 < c && !dup; c2++) dup = Fk[0] == V0[c2] || Fk[1] == V0[c2] || Fk[2] == V0[c2]; /* met around an earlier vertex */
+        if (dup) continue;
+        if (SeenDistance(m, k, y, list != NULL, seen, ns, &q, &d2)) continue;
+        if (Better(d2, k, b)) {
+          b->d2 = d2;
+          b->f  = k;
+        }
+        if (list && d2 <= R2 && ListAdd(list, nl, seen, q, k, d2)) return 1;
       }
-      if (list && d2 <= R2 && ListAdd(list, nl, seen, q, k, d2)) return 1;
-    }
   }
   return 0;
 }
@@ -1019,8 +996,8 @@ static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, 
   int               reg, f = FacetsDecode(m, hxi, heta, &u, &v), nl = 0, ns = 1;
   Best              b;
   Best              list[256];
-  if (m->star) {
-    Prefetch(&m->star[f]);
+  if (m->clear) {
+    Prefetch(&m->clear[f]);
     Prefetch(&m->adj[3 * f]);
   }
   b.d2 = TriClosest(m, f, y, &u, &v, &reg);
@@ -1155,8 +1132,9 @@ static PetscErrorCode FacetsDestroy(Patch *p)
   PetscCall(PetscFree(m->node));
   PetscCall(PetscFree(m->gcell));
   PetscCall(PetscFree(m->glist));
-  PetscCall(PetscFree(m->star));
-  PetscCall(PetscFree(m->st));
+  PetscCall(PetscFree(m->clear));
+  PetscCall(PetscFree(m->vfs));
+  PetscCall(PetscFree(m->vf));
   PetscCall(PetscFree(m));
   p->data = NULL;
   PetscFunctionReturn(0);
@@ -1164,7 +1142,15 @@ static PetscErrorCode FacetsDestroy(Patch *p)
 
 size_t FacetsBytes(const FacetsData *m)
 {
-  return sizeof(*m) + (size_t)m->nv * (3 * sizeof(double) + 1) + (size_t)m->nf * (9 * sizeof(int) + 1) + (size_t)m->nn * 3 * sizeof(double) + (size_t)m->nnode * sizeof(FacetsNode) + (size_t)m->gcap * sizeof(FacetsCell) + (size_t)m->nglist * sizeof(int) + (m->star ? ((size_t)m->nf + 1) * sizeof(FacetsStar) + (size_t)m->nst * sizeof(int) : 0);
+  return sizeof(*m) + (size_t)m->nv * (3 * sizeof(double) + 1) + (size_t)m->nf * (9 * sizeof(int) + 1) + (size_t)m->nn * 3 * sizeof(double) + (size_t)m->nnode * sizeof(FacetsNode) + (size_t)m->gcap * sizeof(FacetsCell) + (size_t)m->nglist * sizeof(int) + (m->clear ? (size_t)m->nf * (sizeof(float) + 3 * sizeof(int)) + ((size_t)m->nv + 1) * sizeof(int) : 0);
+}
+
+/* the storage of FacetsBytes per array, in bytes per facet (scripts/bench_tool_facets.c -bench_bytes) */
+void FacetsBytesBreakdown(const FacetsData *m, FILE *fp)
+{
+  const double nf = (double)m->nf;
+  fprintf(fp, "facets %d vertices %d normals %d nodes %d grid slots %d grid entries %d\n", m->nf, m->nv, m->nn, m->nnode, m->gcap, m->nglist);
+  fprintf(fp, "V %.1f vbnd %.1f F %.1f adj %.1f C %.1f curved %.1f N %.1f node %.1f gcell %.1f glist %.1f clear %.1f vfs+vf %.1f total %.1f\n", 24.0 * m->nv / nf, m->nv / nf, 12.0, 12.0, 12.0, 1.0, 24.0 * m->nn / nf, (double)sizeof(FacetsNode) * m->nnode / nf, (double)sizeof(FacetsCell) * m->gcap / nf, 4.0 * m->nglist / nf, m->clear ? 4.0 : 0.0, m->clear ? (12.0 * nf + 4.0 * (m->nv + 1)) / nf : 0.0, (double)FacetsBytes(m) / nf);
 }
 
 int FacetsBruteClosest(const Patch *p, const double y[3], double *d2)
@@ -1240,13 +1226,18 @@ double FacetsPatchDistance2(const Patch *p, int f, const double y[3], int *stati
   return d2;
 }
 
-double FacetsClearance(const Patch *p, int f, int *nstar, const int **star)
-{
+double FacetsClearance(const Patch *p, int f, int *nstar, int star[], int maxstar)
+{ /* the star: the facets around f's vertices, each once */
   const FacetsData *m = (const FacetsData *)p->data;
-  if (!m->star) return 0.0;
-  *nstar = m->star[f + 1].start - m->star[f].start;
-  *star  = &m->st[m->star[f].start];
-  return (double)m->star[f].clear;
+  *nstar              = 0;
+  if (!m->clear) return 0.0;
+  for (int c = 0; c < 3; c++)
+    for (int j = m->vfs[m->F[3 * f + c]]; j < m->vfs[m->F[3 * f + c] + 1]; j++) {
+      int in = 0;
+      for (int t = 0; t < *nstar && !in; t++) in = star[t] == m->vf[j];
+      if (!in && *nstar < maxstar) star[(*nstar)++] = m->vf[j];
+    }
+  return (double)m->clear[f];
 }
 
 int FacetsStarCertifies(const Patch *p, int f, const double y[3])
@@ -1255,7 +1246,7 @@ int FacetsStarCertifies(const Patch *p, int f, const double y[3])
   double            u, v;
   int               reg;
   const double      d2 = TriClosest(m, f, y, &u, &v, &reg), R2 = m->smooth ? CandidateRadius2(m, d2) : d2;
-  return m->star && sqrt(d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) < (double)m->star[f].clear;
+  return m->clear && sqrt(d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) < (double)m->clear[f];
 }
 
 int FacetsOfParameters(const Patch *p, double xi, double eta, double *u, double *v) { return FacetsDecode((const FacetsData *)p->data, xi, eta, u, v); }

@@ -33,16 +33,9 @@ typedef struct {
   int       start, count;
 } FacetsCell;
 
-/* a triangle's star and clearance: the start of its star's list, and a lower bound of the distance
-   from the triangle to every triangle outside its star (rounded down; the local certificate) */
-typedef struct {
-  int   start;
-  float clear;
-} FacetsStar;
-
 typedef struct {
   char           file[PETSC_MAX_PATH_LEN];
-  int            nv, nf, nn, nnode, nopen, nst;
+  int            nv, nf, nn, nnode, nopen;
   double        *V;     /* 3 nv: vertex coordinates (reference position)                          */
   int           *F;     /* 3 nf: vertex ids of each triangle, counterclockwise seen from the normal */
   int           *adj;   /* 3 nf: the neighbour across edge e (P_e P_e+1); -1 open, -2 non-manifold */
@@ -57,10 +50,11 @@ typedef struct {
   int            gcap, nglist; /* its hash table's slots (a power of 2) and entries                  */
   FacetsCell    *gcell; /* gcap slots (count 0: empty)                                              */
   int           *glist; /* nglist: the facets whose bounding box meets each cell                     */
-  FacetsStar    *star;  /* nf + 1: each triangle's star (the facets sharing a vertex with it, itself
-                           included: st[star[f].start .. star[f+1].start - 1], increasing) and its
-                           clearance                                                              */
-  int           *st;
+  float         *clear; /* nf: each triangle's clearance, a lower bound of the distance from it to every
+                           triangle outside its star (the facets sharing a vertex with it), rounded
+                           down (the local certificate)                                            */
+  int           *vfs, *vf; /* nv + 1, 3 nf: the facets around each vertex, vf[vfs[k] .. vfs[k+1]-1],
+                           increasing (a triangle's star: the union of its three vertices' lists)  */
   double         dev;   /* the largest distance of a smoothed facet from its plane triangle          */
   int            smooth;
   double         feature_deg;
@@ -85,6 +79,7 @@ PetscErrorCode FacetsPatchFromOptions(PetscOptionItems *PetscOptionsObject, Patc
 /* the format of path: from `format` if set, else its extension; "" if unknown */
 void           FacetsFormat(const char path[], const char format[], char out[16]);
 size_t         FacetsBytes(const FacetsData *m);
+void           FacetsBytesBreakdown(const FacetsData *m, FILE *fp);
 /* the bucket grid of the facets (after the facets and vertices are final) */
 PetscErrorCode FacetsGridBuild(FacetsData *m);
 /* each triangle's star and clearance (after the hierarchy is final) */
@@ -101,7 +96,7 @@ void FacetsEncodeForTest(int f, double u, double v, double *xi, double *eta);
 double FacetsTriTriDistance2(const double A[3][3], const double B[3][3]);
 /* for the tests: the squared distance of y from facet f's (smoothed) patch, and whether it is a stationary point */
 double FacetsPatchDistance2(const Patch *p, int f, const double y[3], int *stationary);
-double FacetsClearance(const Patch *p, int f, int *nstar, const int **star);
+double FacetsClearance(const Patch *p, int f, int *nstar, int star[], int maxstar);
 int    FacetsStarCertifies(const Patch *p, int f, const double y[3]);
 int FacetsOfParameters(const Patch *p, double xi, double eta, double *u, double *v);
 #endif
