@@ -9,6 +9,11 @@
    along n for a patch of a smooth surface, so that the nodes beside a point's foot are pruned,
    which the axis-aligned box of a tilted patch cannot do); a leaf holds the facets first ..
    first+count-1, an inner node (count 0) its children first and first+1 */
+/* a leaf's facets at most (a node of more is split in two at its median) */
+#ifndef FACETS_LEAF
+#define FACETS_LEAF 8
+#endif
+
 typedef struct {
   float lo[3], hi[3];
   float n[3], t1[3], olo[3], ohi[3];
