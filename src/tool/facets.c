@@ -318,39 +318,46 @@ static void TreeClosest(const FacetsData *m, const double y[3], Best *b) { TreeC
    y: a warm start's bound r (the distance to a facet near the hint) is proved the smallest by
    those few cells, whatever the tool's size. */
 
-#define GRID_BITS 21
 #ifndef GRID_MAXCELLS
 #define GRID_MAXCELLS 27
+#endif
+#ifndef GRID_SCALE
+#define GRID_SCALE 2.0
 #endif
 
 static inline long GridIndex(const FacetsData *m, int i, double x) { return (long)floor((x - m->go[i]) / m->gh); }
 
-static inline long long GridKey(long ix, long iy, long iz) { return ((long long)ix << (2 * GRID_BITS)) | ((long long)iy << GRID_BITS) | (long long)iz; }
+/* a cell's key: its indices packed, ix + nx (iy + ny iz) (below INT_MAX: FacetsGridBuild) */
+static inline int GridKey(const FacetsData *m, long ix, long iy, long iz) { return (int)(ix + m->gn[0] * (iy + m->gn[1] * iz)); }
 
-static inline unsigned GridSlot(long long key, int cap)
+static inline unsigned GridSlot(long ix, long iy, long iz, int cap)
 { /* blocks of 4 x 4 x 4 cells on 64 consecutive slots (neighbouring cells share cache lines), the
      blocks scattered by splitmix64's finaliser */
-  const long long    M = (1LL << GRID_BITS) - 1;
-  const long long    ix = (key >> (2 * GRID_BITS)) & M, iy = (key >> GRID_BITS) & M, iz = key & M;
-  unsigned long long z  = (unsigned long long)GridKey(ix >> 2, iy >> 2, iz >> 2);
-  z                     = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z                     = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  unsigned long long z = ((unsigned long long)(ix >> 2) << 42) | ((unsigned long long)(iy >> 2) << 21) | (unsigned long long)(iz >> 2);
+  z                    = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z                    = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
   z ^= z >> 31;
   return (unsigned)((z << 6) | (unsigned long long)(((ix & 3) << 4) | ((iy & 3) << 2) | (iz & 3))) & (unsigned)(cap - 1);
 }
 
-static const FacetsCell *GridFind(const FacetsData *m, long long key)
+static const FacetsCell *GridFind(const FacetsData *m, long ix, long iy, long iz)
 {
-  for (unsigned s = GridSlot(key, m->gcap);; s = (s + 1) & (unsigned)(m->gcap - 1)) {
+  const int key = GridKey(m, ix, iy, iz);
+  for (unsigned s = GridSlot(ix, iy, iz, m->gcap);; s = (s + 1) & (unsigned)(m->gcap - 1)) {
     const FacetsCell *c = &m->gcell[s];
     if (c->key == key) return c;
     if (c->key < 0) return NULL;
   }
 }
 
-static FacetsCell *GridInsert(FacetsCell *cell, int cap, long long key)
+/* the grid's table while it is built: a cell's key, its list's start and length */
+typedef struct {
+  int key, start, count;
+} GridBuildCell;
+
+static GridBuildCell *GridInsert(GridBuildCell *cell, int cap, int key, long ix, long iy, long iz)
 {
-  for (unsigned s = GridSlot(key, cap);; s = (s + 1) & (unsigned)(cap - 1)) {
+  for (unsigned s = GridSlot(ix, iy, iz, cap);; s = (s + 1) & (unsigned)(cap - 1)) {
     if (cell[s].key == key) return &cell[s];
     if (cell[s].key < 0) {
       cell[s].key   = key;
@@ -373,10 +380,16 @@ static void FacetBoxCells(const FacetsData *m, int f, long lo[3], long hi[3])
   }
 }
 
+/* Cells of GRID_SCALE times the facets' mean largest box extent (a cube y -+ r with r below about a
+   facet's size meets at most 8 cells), grown where the cells' count would not fit an int key. The
+   table: a cell's key and the start of its list, the last facet of each list stored as -1 - f, at
+   most half full (slots a power of 2). */
 PetscErrorCode FacetsGridBuild(FacetsData *m)
 {
-  double bl[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, bh[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, ext = 0.0, h = 0.0;
-  int    ncell = 0;
+  double         bl[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, bh[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, h = 0.0;
+  int            ncell = 0, cap = 64;
+  long long      total = 0;
+  GridBuildCell *cell;
 
   PetscFunctionBeginUser;
   m->gcap   = 0;
@@ -389,8 +402,7 @@ PetscErrorCode FacetsGridBuild(FacetsData *m)
       bl[i] = fmin(bl[i], m->V[3 * k + i]);
       bh[i] = fmax(bh[i], m->V[3 * k + i]);
     }
-  for (int i = 0; i < 3; i++) ext = fmax(ext, bh[i] - bl[i]);
-  for (int f = 0; f < m->nf; f++) { /* cell size: the mean of the facets' largest box extents */
+  for (int f = 0; f < m->nf; f++) { /* the mean of the facets' largest box extents */
     double e = 0.0;
     for (int i = 0; i < 3; i++) {
       double a = HUGE_VAL, b = -HUGE_VAL;
@@ -402,69 +414,82 @@ PetscErrorCode FacetsGridBuild(FacetsData *m)
     }
     h += e / m->nf;
   }
-  h = fmax(h, ext / (double)((1L << GRID_BITS) - 8));
+  h *= GRID_SCALE;
   if (!(h > 0.0) || !isfinite(h)) PetscFunctionReturn(0);
+  for (;; h *= 1.25) { /* the cells' count within an int: ix + nx (iy + ny iz) a key */
+    double n = 1.0;
+    for (int i = 0; i < 3; i++) n *= floor((bh[i] - bl[i]) / h) + 5.0;
+    if (n < 0.5 * INT_MAX) break;
+  }
   m->gh = h;
-  for (int i = 0; i < 3; i++) m->go[i] = bl[i] - 2.0 * h;
-  {
-    long long total = 0;
-    int       cap   = 64;
-    for (int f = 0; f < m->nf; f++) {
-      long lo[3], hi[3];
-      FacetBoxCells(m, f, lo, hi);
-      total += (long long)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
-    }
-    if (total > INT_MAX / 2) PetscFunctionReturn(0); /* no grid: the hierarchy alone */
-    while (cap < 2 * m->nf) cap *= 2;
-    PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
-    for (int s = 0; s < cap; s++) m->gcell[s].key = -1;
-    for (int pass = 0; pass < 2; pass++) { /* counts, then the lists */
-      if (pass == 1) { /* the lists' starts in the order the facets first meet the cells (the
-                          hierarchy's order: neighbouring cells' lists are near), then the lists */
-        int start = 0;
-        PetscCall(PetscMalloc1((size_t)total, &m->glist));
-        for (int s = 0; s < cap; s++) m->gcell[s].start = -1;
-        for (int f = 0; f < m->nf; f++) {
-          long lo[3], hi[3];
-          FacetBoxCells(m, f, lo, hi);
-          for (long ix = lo[0]; ix <= hi[0]; ix++)
-            for (long iy = lo[1]; iy <= hi[1]; iy++)
-              for (long iz = lo[2]; iz <= hi[2]; iz++) {
-                FacetsCell *c = GridInsert(m->gcell, cap, GridKey(ix, iy, iz));
-                if (c->start < 0) {
-                  c->start = start;
-                  start += c->count;
-                  c->count = 0;
-                }
-              }
-        }
-        m->nglist = start;
-      }
+  for (int i = 0; i < 3; i++) {
+    m->go[i] = bl[i] - 2.0 * h;
+    m->gn[i] = GridIndex(m, i, bh[i]) + 3; /* the tool's cells 2 .. gn - 3 */
+  }
+  for (int f = 0; f < m->nf; f++) {
+    long lo[3], hi[3];
+    FacetBoxCells(m, f, lo, hi);
+    total += (long long)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+  }
+  if (total > INT_MAX / 2) PetscFunctionReturn(0); /* no grid: the hierarchy alone */
+  PetscCall(PetscMalloc1((size_t)cap, &cell));
+  for (int s = 0; s < cap; s++) cell[s].key = -1;
+  for (int pass = 0; pass < 2; pass++) { /* counts, then the lists */
+    if (pass == 1) { /* the lists' starts in the order the facets first meet the cells (the
+                        hierarchy's order: neighbouring cells' lists are near), then the lists */
+      int start = 0;
+      PetscCall(PetscMalloc1((size_t)total, &m->glist));
+      for (int s = 0; s < cap; s++) cell[s].start = -1;
       for (int f = 0; f < m->nf; f++) {
         long lo[3], hi[3];
         FacetBoxCells(m, f, lo, hi);
         for (long ix = lo[0]; ix <= hi[0]; ix++)
           for (long iy = lo[1]; iy <= hi[1]; iy++)
             for (long iz = lo[2]; iz <= hi[2]; iz++) {
-              FacetsCell *c = GridInsert(m->gcell, cap, GridKey(ix, iy, iz));
-              if (pass == 1) m->glist[c->start + c->count] = f;
-              else if (c->count == 0) ncell++;
-              c->count++;
-              if (pass == 0 && 2 * ncell > cap) { /* grow: rehash at twice the size */
-                FacetsCell *old = m->gcell;
-                const int   oc  = cap;
-                cap *= 2;
-                PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
-                for (int s = 0; s < cap; s++) m->gcell[s].key = -1;
-                for (int s = 0; s < oc; s++)
-                  if (old[s].key >= 0) *GridInsert(m->gcell, cap, old[s].key) = old[s];
-                PetscCall(PetscFree(old));
+              GridBuildCell *c = GridInsert(cell, cap, GridKey(m, ix, iy, iz), ix, iy, iz);
+              if (c->start < 0) {
+                c->start = start;
+                start += c->count;
+                c->count = 0;
               }
             }
       }
+      m->nglist = start;
     }
-    m->gcap = cap;
+    for (int f = 0; f < m->nf; f++) {
+      long lo[3], hi[3];
+      FacetBoxCells(m, f, lo, hi);
+      for (long ix = lo[0]; ix <= hi[0]; ix++)
+        for (long iy = lo[1]; iy <= hi[1]; iy++)
+          for (long iz = lo[2]; iz <= hi[2]; iz++) {
+            GridBuildCell *c = GridInsert(cell, cap, GridKey(m, ix, iy, iz), ix, iy, iz);
+            if (pass == 1) m->glist[c->start + c->count] = f;
+            else if (c->count == 0) ncell++;
+            c->count++;
+            if (pass == 0 && 2 * ncell > cap) { /* grow: rehash at twice the size */
+              GridBuildCell *old = cell;
+              const int      oc  = cap;
+              cap *= 2;
+              PetscCall(PetscMalloc1((size_t)cap, &cell));
+              for (int s = 0; s < cap; s++) cell[s].key = -1;
+              for (int s = 0; s < oc; s++)
+                if (old[s].key >= 0) { /* the key's cell indices back */
+                  const long k = old[s].key, kx = k % m->gn[0], ky = (k / m->gn[0]) % m->gn[1], kz = k / ((long)m->gn[0] * m->gn[1]);
+                  *GridInsert(cell, cap, old[s].key, kx, ky, kz) = old[s];
+                }
+              PetscCall(PetscFree(old));
+            }
+          }
+    }
   }
+  PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
+  for (int s = 0; s < cap; s++) {
+    m->gcell[s].key   = cell[s].key;
+    m->gcell[s].start = cell[s].start;
+    if (cell[s].key >= 0) m->glist[cell[s].start + cell[s].count - 1] = -1 - m->glist[cell[s].start + cell[s].count - 1]; /* the list's end */
+  }
+  PetscCall(PetscFree(cell));
+  m->gcap = cap;
   PetscFunctionReturn(0);
 }
 
@@ -534,7 +559,7 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
       lo[i] = GridIndex(m, i, y[i] - r);
       hi[i] = GridIndex(m, i, y[i] + r);
       if (lo[i] < 0) lo[i] = 0;
-      if (hi[i] > (1L << GRID_BITS) - 1) hi[i] = (1L << GRID_BITS) - 1;
+      if (hi[i] > m->gn[i] - 1) hi[i] = m->gn[i] - 1;
       if (hi[i] < lo[i]) return 0; /* no cell of the tool within r: none closer than b */
       n *= hi[i] - lo[i] + 1;
     }
@@ -550,12 +575,15 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
           if (o > 0.0) bd += o * o;
         }
         if (bd * (1.0 - 1e-9) > R2) continue;
-        const FacetsCell *c = GridFind(m, GridKey(ix, iy, iz));
+        const FacetsCell *c = GridFind(m, ix, iy, iz);
+        int               j, last;
         if (!c) continue;
-        for (int j = c->start; j < c->start + c->count; j++) {
-          const int k = m->glist[j];
-          int       q;
-          double    d2;
+        j = c->start;
+        do { /* the cell's list, its last facet stored as -1 - f */
+          int    k = m->glist[j++], q;
+          double d2;
+          last = k < 0;
+          if (last) k = -1 - k;
           if (SeenDistance(m, k, y, list != NULL, seen, ns, &q, &d2)) continue;
           if (Better(d2, k, b)) {
             b->d2 = d2;
@@ -564,7 +592,7 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
             else R2 = d2;
           }
           if (list && d2 <= R2 && ListAdd(list, nl, seen, q, k, d2)) return 1;
-        }
+        } while (!last);
       }
   return 0;
 }

@@ -32,10 +32,10 @@ static inline void FacetsNodeAxes(const FacetsNode *nd, double a[3][3])
   a[2][2] = a[0][0] * a[1][1] - a[0][1] * a[1][0];
 }
 
-/* a cell of the bucket grid: its key (the packed cell indices) and its facets glist[start .. start+count-1] */
+/* a slot of the bucket grid's table: its cell's key (the packed cell indices; -1: empty) and the
+   start of its facets' list in glist (the list's last facet stored as -1 - f) */
 typedef struct {
-  long long key;
-  int       start, count;
+  int key, start;
 } FacetsCell;
 
 typedef struct {
@@ -51,7 +51,8 @@ typedef struct {
                             angle): curved by the smoothing                                        */
   FacetsNode    *node;  /* nnode                                                                    */
   double         L;     /* the surface's size (bounding-box diagonal)                               */
-  double         go[3], gh; /* bucket grid (warm start): origin and cell size (about a facet's size)   */
+  double         go[3], gh; /* bucket grid (warm start): origin and cell size (about twice a facet's size) */
+  long           gn[3]; /* its cells along each axis (gn[0] gn[1] gn[2] below INT_MAX)              */
   int            gcap, nglist; /* its hash table's slots (a power of 2) and entries                  */
   FacetsCell    *gcell; /* gcap slots (count 0: empty)                                              */
   int           *glist; /* nglist: the facets whose bounding box meets each cell                     */
