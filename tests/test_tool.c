@@ -1778,7 +1778,7 @@ static void test_facets_sphere(void)
           jv = fmax(jv, dist(n1, n2));
         }
       TU_CHECK(jv < 1e-12 && jmid < 2e-2, "facets sphere smoothed: the normal is continuous at vertices (jump %.1e) and jumps by at most %.2e rad across edges (midpoints)", jv, jmid);
-      printf("# facets sphere: %.0f bytes per facet\n", (double)FacetsBytes(m) / m->nf);
+      TU_CHECK((double)FacetsBytes(m) / m->nf <= 200.0, "facets sphere (%d triangles): the tool's storage %.0f bytes per facet, at most 200", m->nf, (double)FacetsBytes(m) / m->nf);
     }
     ToolsDestroy(n, &T);
   }
