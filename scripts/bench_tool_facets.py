@@ -54,19 +54,19 @@ def sphere_stl(path, k):
     return len(T)
 
 
-NOTE = ("The warm start (src/tool/facets.c, `FacetsClosestHint`): from the hint's facet a greedy walk over the neighbours gives a facet f at distance d; "
+NOTE = ("The warm start (src/tool/facets.c, `FacetsClosestHint`): the hint's facet f at distance d, if its star certificate (below) holds; else a greedy walk from it over the neighbours gives a facet f at distance d; "
         "if d + r (r the search radius: d raw, d + 2δ + τ smoothed) is below f's clearance (a lower bound, computed when the tool is built, of the "
         "distance from the triangle to every triangle outside its star, the facets sharing a vertex with it), every facet within r shares a vertex "
-        "with f and f's star alone gives the result: a node near the surface evaluates its own dozen facets, whatever the tool's size. Otherwise "
-        "the bucket grid (cells about a facet's size, each listing the facets whose box meets it) holds every facet within d in the cells that meet "
+        "with f and f's star alone gives the result (read from the facet lists of f's three vertices): a node near the surface evaluates its own dozen facets, whatever the tool's size. Otherwise "
+        "the bucket grid (cells about twice a facet's size, each listing the facets whose box meets it) holds every facet within d in the cells that meet "
         "the cube y ± d, and when that cube spans at most 27 cells those cells give the result; otherwise (a node farther than about one cell from "
         "the surface, or a smoothed coarse surface whose bound d + 2δ is wide) the hierarchy is searched from its root with the bound. The result "
         "is ToolProject's bit for bit (tests/test_tool.c). Near contact (±0.1 % R) the star decides almost every query, and the facets a query "
-        "evaluates no longer grow with the tool; its time still does at 1e6 facets: the 20000 nodes are spread over a tool of about 230 MB, and "
+        "evaluates no longer grow with the tool; its time still does at 1e6 facets: the 20000 nodes are spread over a tool of about 120 MB, and "
         "the cache lines a node touches (its facets, their vertices and neighbours, its star) are no longer cached from the previous pass "
-        "(with 2000 nodes the hinted raw pass costs about the same at 1e6 facets as at 128). At ±5 % R most nodes of the finer spheres are "
+        "(with 2000 nodes the hinted raw pass cost about the same at 1e6 facets as at 128). At ±5 % R most nodes of the finer spheres are "
         "many cells away, beyond their facet's clearance, and take the hierarchy, whose cost grows with the tool."
-        " On a machine shared with other work (busy cores near the machine's count) the rows are measured at different loads and their ratios are not reliable: doc/tools.md, *Cost*, gives medians of interleaved runs of the code before and after the star certificate.")
+        " On a machine shared with other work (busy cores near the machine's count) the rows are measured at different loads and, by the wall time, their ratios are not reliable (`--cputime`: the thread's processor time): doc/tools.md, *Cost*, gives medians of interleaved runs of the code before and after the star certificate and before and after the smaller tool.")
 
 
 def main():
