@@ -1,7 +1,11 @@
 /* Projection cost on a meshed tool surface (scripts/bench_tool_facets.py builds and runs this):
    bench_tool_facets -tool_names s -tool_s_file sphere.stl [-tool_s_smooth 0] -bench_queries N
    or, for the hinted node passes alone (medians of interleaved runs, doc/tools.md "Cost"):
-   bench_tool_facets -tool_names s -tool_s_file sphere.stl [-tool_s_smooth 0] -bench_node_passes BAND [-bench_reps 5]
+   bench_tool_facets -tool_names s -tool_s_file sphere.stl [-tool_s_smooth 0] -bench_node_passes BAND[,BAND...] [-bench_reps 5] [-bench_cputime]
+   or, for the tool's storage per array (bytes per facet):
+   bench_tool_facets -tool_names s -tool_s_file sphere.stl -bench_bytes
+   or, to compare two builds bit for bit (ToolProject's and ToolProjectHint's results to a file):
+   bench_tool_facets -tool_names s -tool_s_file sphere.stl [-tool_s_smooth 0] -bench_dump FILE
    prints one line: facets, build seconds, bytes per facet, ns per ToolProject and per
    ToolProjectHint (hint: the projection of a point 1e-3 R away, as a node's previous pairing),
    the queries in random order, then the same in a spatially coherent order (sorted along a
@@ -14,10 +18,14 @@
 #include "tool.h"
 #include "../src/tool/facets.h"
 
+static clockid_t clk = CLOCK_MONOTONIC; /* -bench_cputime: the thread's processor time instead (on a machine
+                                           shared with other work the wall time counts the time the
+                                           process waits for a core) */
+
 static double now(void)
 {
   struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
+  clock_gettime(clk, &t);
   return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
@@ -106,20 +114,79 @@ int main(int argc, char **argv)
   PetscInt n, nq = 200000;
   Tool    *T;
   double   t0, tb, acc = 0, sh[3] = {0, 0, 0};
-  PetscReal band = 0;
+  PetscReal band[8];
+  PetscInt  nband = 8;
   PetscInt  reps = 5;
+  PetscBool bytes = PETSC_FALSE;
+  char      dump[PETSC_MAX_PATH_LEN] = "";
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-bench_queries", &nq, NULL));
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-bench_node_passes", &band, NULL));
+  {
+    PetscBool set;
+    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-bench_node_passes", band, &nband, &set));
+    if (!set) nband = 0;
+  }
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-bench_reps", &reps, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-bench_bytes", &bytes, NULL));
+  {
+    PetscBool cpu = PETSC_FALSE;
+    PetscCall(PetscOptionsGetBool(NULL, NULL, "-bench_cputime", &cpu, NULL));
+    if (cpu) clk = CLOCK_THREAD_CPUTIME_ID;
+  }
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-bench_dump", dump, sizeof(dump), NULL));
   t0 = now();
   PetscCall(ToolsCreateFromOptions(PETSC_COMM_WORLD, &n, &T));
   tb                  = now() - t0;
-  if (band > 0) { /* only the hinted node passes at this band: -bench_reps sets of 10 passes of 20000 nodes */
+  if (bytes) { /* the tool's storage per array, bytes per facet */
+    const FacetsData *m = (const FacetsData *)T[0].patch[0].data;
+    FacetsBytesBreakdown(m, stdout);
+    PetscCall(ToolsDestroy(n, &T));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
+  if (dump[0]) { /* the results of ToolProject and of ToolProjectHint (node passes at 1e-4, 1e-2 and
+                    5e-2 R) written to a file, to compare two builds of the code bit for bit */
+    FILE        *fp = fopen(dump, "wb");
+    const double R  = 0.5 * (T[0].bbox[1] - T[0].bbox[0]), bands[3] = {1e-4, 1e-2, 5e-2};
+    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-bench_dump: cannot write %s", dump);
+    srand(3);
+    for (int b = 0; b < 3; b++)
+      for (int k = 0; k < 2000; k++) {
+        double     d[3], l, y[3];
+        Projection prev, pr;
+        int        has = 0;
+        do {
+          for (int i = 0; i < 3; i++) d[i] = 2.0 * rand() / RAND_MAX - 1.0;
+          l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        } while (l > 1.0 || l < 1e-3);
+        for (int q = 0; q < 8; q++) {
+          const double r = R * (1.0 + bands[b] * (2.0 * rand() / RAND_MAX - 1.0));
+          for (int i = 0; i < 3; i++) d[i] += 2e-3 * (2.0 * rand() / RAND_MAX - 1.0);
+          l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+          for (int i = 0; i < 3; i++) y[i] = r * d[i] / l;
+          const int r0 = ToolProject(&T[0], sh, y, PETSC_INFINITY, &pr);
+          double    o[8] = {r0, pr.xi, pr.eta, pr.gap, pr.n[0], pr.n[1], pr.n[2], 0};
+          const int r1 = ToolProjectHint(&T[0], sh, y, PETSC_INFINITY, has ? &prev : NULL, &pr);
+          o[7]         = (r1 != r0) || (!r1 && (pr.xi != o[1] || pr.eta != o[2] || pr.gap != o[3]));
+          if (!r1) {
+            prev = pr;
+            has  = 1;
+          }
+          fwrite(o, sizeof(double), 8, fp);
+        }
+      }
+    fclose(fp);
+    PetscCall(ToolsDestroy(n, &T));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
+  if (nband > 0) { /* only the hinted node passes at these bands: -bench_reps sets of 10 passes of 20000 nodes each */
     const double R = 0.5 * (T[0].bbox[1] - T[0].bbox[0]);
-    printf("build %.2f s; hinted node passes at band %g, ns per node and pass:", tb, (double)band);
-    for (PetscInt r = 0; r < reps; r++) printf(" %.0f", NodePasses(&T[0], R, band, 20000, 11, 1, &acc));
-    printf(" (%g)\n", acc);
+    for (PetscInt b = 0; b < nband; b++) {
+      printf("build %.2f s; hinted node passes at band %g, ns per node and pass:", tb, (double)band[b]);
+      for (PetscInt r = 0; r < reps; r++) printf(" %.0f", NodePasses(&T[0], R, band[b], 20000, 11, 1, &acc));
+      printf(" (%g)\n", acc);
+    }
     PetscCall(ToolsDestroy(n, &T));
     PetscCall(PetscFinalize());
     return 0;

@@ -9,7 +9,7 @@ surface, raw facets and smoothed (Nagata), one core: the queries in random order
 along a Morton curve (spatially coherent, as the nodes of a mesh come).
 
   /usr/bin/python3 scripts/bench_tool_facets.py [--ks 4,11,35,112,354] [--queries 200000]
-                                                [--repeat 1] [--output doc/performance.md]
+                                                [--repeat 1] [--output doc/performance.md] [--cputime]
 Prints the table and writes the section "## Meshed tool surfaces" of the output file, keeping its
 other sections (--output '' : print only).
 """
@@ -54,19 +54,19 @@ def sphere_stl(path, k):
     return len(T)
 
 
-NOTE = ("The warm start (src/tool/facets.c, `FacetsClosestHint`): from the hint's facet a greedy walk over the neighbours gives a facet f at distance d; "
+NOTE = ("The warm start (src/tool/facets.c, `FacetsClosestHint`): the hint's facet f at distance d, if its star certificate (below) holds; else a greedy walk from it over the neighbours gives a facet f at distance d; "
         "if d + r (r the search radius: d raw, d + 2δ + τ smoothed) is below f's clearance (a lower bound, computed when the tool is built, of the "
         "distance from the triangle to every triangle outside its star, the facets sharing a vertex with it), every facet within r shares a vertex "
-        "with f and f's star alone gives the result: a node near the surface evaluates its own dozen facets, whatever the tool's size. Otherwise "
-        "the bucket grid (cells about a facet's size, each listing the facets whose box meets it) holds every facet within d in the cells that meet "
+        "with f and f's star alone gives the result (read from the facet lists of f's three vertices): a node near the surface evaluates its own dozen facets, whatever the tool's size. Otherwise "
+        "the bucket grid (cells about twice a facet's size, each listing the facets whose box meets it) holds every facet within d in the cells that meet "
         "the cube y ± d, and when that cube spans at most 27 cells those cells give the result; otherwise (a node farther than about one cell from "
         "the surface, or a smoothed coarse surface whose bound d + 2δ is wide) the hierarchy is searched from its root with the bound. The result "
         "is ToolProject's bit for bit (tests/test_tool.c). Near contact (±0.1 % R) the star decides almost every query, and the facets a query "
-        "evaluates no longer grow with the tool; its time still does at 1e6 facets: the 20000 nodes are spread over a tool of about 230 MB, and "
+        "evaluates no longer grow with the tool; its time still does at 1e6 facets: the 20000 nodes are spread over a tool of about 120 MB, and "
         "the cache lines a node touches (its facets, their vertices and neighbours, its star) are no longer cached from the previous pass "
-        "(with 2000 nodes the hinted raw pass costs about the same at 1e6 facets as at 128). At ±5 % R most nodes of the finer spheres are "
+        "(with 2000 nodes the hinted raw pass cost about the same at 1e6 facets as at 128). At ±5 % R most nodes of the finer spheres are "
         "many cells away, beyond their facet's clearance, and take the hierarchy, whose cost grows with the tool."
-        " On a machine shared with other work (busy cores near the machine's count) the rows are measured at different loads and their ratios are not reliable: doc/tools.md, *Cost*, gives medians of interleaved runs of the code before and after the star certificate.")
+        " On a machine shared with other work (busy cores near the machine's count) the rows are measured at different loads and, by the wall time, their ratios are not reliable (`--cputime`: the thread's processor time): doc/tools.md, *Cost*, gives medians of interleaved runs of the code before and after the star certificate and before and after the smaller tool.")
 
 
 def main():
@@ -75,6 +75,7 @@ def main():
     ap.add_argument("--queries", type=int, default=200000)
     ap.add_argument("--repeat", type=int, default=1, help="runs per row; the table gives each column's median")
     ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--cputime", action="store_true", help="time by the thread's processor time (bench_tool_facets -bench_cputime): on a machine shared with other work, the wall time counts the waits for a core")
     a = ap.parse_args()
     exe = os.path.join(ROOT, "build", "bench_tool_facets")
     pc = lambda *x: subprocess.check_output(["pkg-config"] + list(x) + ["PETSc"], text=True).split()
@@ -95,7 +96,7 @@ def main():
             path = os.path.join(d, "sphere_%d.stl" % k)
             sphere_stl(path, k)
             for smooth in (0, 1):
-                cmd = ["/usr/bin/time", "-f", "%M", exe, "-tool_names", "s", "-tool_s_file", path, "-tool_s_smooth", str(smooth), "-bench_queries", str(a.queries)]
+                cmd = ["/usr/bin/time", "-f", "%M", exe, "-tool_names", "s", "-tool_s_file", path, "-tool_s_smooth", str(smooth), "-bench_queries", str(a.queries)] + (["-bench_cputime"] if a.cputime else [])
                 runs = []
                 for _ in range(a.repeat):
                     r = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1"))
@@ -107,7 +108,7 @@ def main():
                 tb = "%.3f" % med(1)
                 mem = med(13) / 1024.0
                 us = [med(i) / 1e3 for i in (3, 5, 8, 9, 10, 11)]
-                vals.append((int(nf), smooth, *us))
+                vals.append((int(nf), smooth, *us, float(bpf)))
                 rows.append("| %s | %s | %s | %s | %s | %.0f |" % (nf, "Nagata" if smooth else "raw", tb, bpf, " | ".join("%.2f" % x for x in us), mem))
                 print(rows[-1])
                 sys.stdout.flush()
@@ -117,7 +118,7 @@ def main():
     if a.output:
         commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
         cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
-        body = ["## Meshed tool surfaces", "", "Measured by `scripts/bench_tool_facets.py` on %s: %s, %d cores; commit %s; %d queries per row, one core%s; busy cores of the machine during the run, this benchmark's included: %.2f (mean)." % (time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), cpu, os.cpu_count(), commit, a.queries, ", each entry the median of %d runs" % a.repeat if a.repeat > 1 else "", busy), "",
+        body = ["## Meshed tool surfaces", "", "Measured by `scripts/bench_tool_facets.py` on %s: %s, %d cores; commit %s; %d queries per row, one core%s%s; busy cores of the machine during the run, this benchmark's included: %.2f (mean)." % (time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), cpu, os.cpu_count(), commit, a.queries, ", each entry the median of %d runs" % a.repeat if a.repeat > 1 else "", "; times: the thread's processor time (`--cputime`), not the wall time" if a.cputime else "", busy), "",
                 "A unit sphere triangulated from an octahedron (8 k² triangles) read from a binary STL as a `facets` tool. Single queries: points uniformly in direction at 0.95 R to 1.05 R from the centre, `ToolProject` (the hierarchy from its root) in random order and in a spatially coherent order (sorted along a Morton curve). Node passes, as the contact object pairs its slave nodes: %d nodes (one tenth of the queries) uniformly in direction at R (1 ± 5 %%) or, near contact, R (1 ± 0.1 %%), taken in a Morton order, each moving by up to 1e-3 R per pass, 10 timed passes after a first one; `ToolProject` from the root, or `ToolProjectHint` with the node's previous result as the hint (as `Pair` in src/contact/contact.c); time per node and pass. Raw facets: the closest triangle. Nagata: the smoothed surface (candidates within d + 2δ + τ, Newton on each). Bytes per facet: the tool's storage (`FacetsBytes`: vertices, connectivity, neighbours, corner normals, edge flags, hierarchy, stars and clearances, bucket grid) over the triangles; peak memory: the process's maximum resident size (reading the file and building the tool included; PETSc's own about 40 MB)." % max(a.queries // 10, 1000), "",
                 head] + rows + ["",
                 ]
@@ -129,6 +130,9 @@ def main():
             for col, what in ((3, "coherent order, from the root"), (5, "node passes at ±5 % R with the hint"), (7, "node passes at ±0.1 % R with the hint")):
                 body.append("%s, %s: %.2f µs at %d facets, %.2f µs at %d (ratio %.1f; target: ratio ≤ 2 and ≤ 5 µs at 1e6: %s)." % ("Nagata" if smooth else "Raw facets", what, lo[col], lo[0], hi[col], hi[0], hi[col] / lo[col], "met" if hi[col] / lo[col] <= 2 and hi[col] <= 5 else "not met"))
                 body.append("")
+        bmin, bmax = min(x[8] for x in vals), max(x[8] for x in vals)
+        body.append("Tool storage: %.0f to %.0f bytes per facet from %d to %d facets (target: at most 200 at every size: %s)." % (bmin, bmax, vals[0][0], vals[-1][0], "met" if bmax <= 200 else "not met"))
+        body.append("")
         body.append(NOTE)
         benchutil.write_doc_section(a.output, "## Meshed tool surfaces", "\n".join(body) + "\n")
 

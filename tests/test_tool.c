@@ -1554,18 +1554,20 @@ static void test_facets_clearance(void)
       const Patch      *p = &T[0].patch[0];
       const FacetsData *m = (const FacetsData *)p->data;
       double            low = 1.0;
-      int               lower = 1;
+      int               lower = 1, starok = 1;
       for (int f = 0; f < m->nf; f += 7) {
-        int        ns = 0;
-        const int *st = NULL;
+        int        ns = 0, st[256];
         double     A[3][3], dmin = HUGE_VAL, h = 0;
-        const double cl = FacetsClearance(p, f, &ns, &st);
+        const double cl = FacetsClearance(p, f, &ns, st, 256);
         for (int v = 0; v < 3; v++)
           for (int c = 0; c < 3; c++) A[v][c] = m->V[3 * m->F[3 * f + v] + c];
         for (int v = 0; v < 3; v++) h = fmax(h, sqrt(pow(A[v][0] - A[(v + 1) % 3][0], 2) + pow(A[v][1] - A[(v + 1) % 3][1], 2) + pow(A[v][2] - A[(v + 1) % 3][2], 2)));
         for (int g = 0; g < m->nf; g++) {
-          int in = 0;
+          int in = 0, shares = 0;
           for (int t = 0; t < ns; t++) in = in || st[t] == g;
+          for (int v = 0; v < 3; v++)
+            for (int w = 0; w < 3; w++) shares = shares || m->F[3 * g + v] == m->F[3 * f + w];
+          if (in != shares) starok = 0; /* the star: exactly the facets sharing a vertex with f */
           if (in) continue;
           double B[3][3];
           for (int v = 0; v < 3; v++)
@@ -1575,7 +1577,7 @@ static void test_facets_clearance(void)
         if (cl > dmin) lower = 0;
         low  = fmin(low, cl / fmin(dmin, h));
       }
-      TU_CHECK(lower && low > 0.7, "facets: each facet's clearance (sphere of %d triangles, every 7th facet) at most its distance to the facets outside its star (brute force), and at least %.2f of it (or of the longest edge, the search's reach)", m->nf, low);
+      TU_CHECK(lower && low > 0.7 && starok, "facets: each facet's clearance (sphere of %d triangles, every 7th facet) at most its distance to the facets outside its star (brute force), and at least %.2f of it (or of the longest edge, the search's reach); the star from the vertices' facet lists is exactly the facets sharing a vertex", m->nf, low);
       ToolsDestroy(n, &T);
     }
     remove(path);
@@ -1776,7 +1778,7 @@ static void test_facets_sphere(void)
           jv = fmax(jv, dist(n1, n2));
         }
       TU_CHECK(jv < 1e-12 && jmid < 2e-2, "facets sphere smoothed: the normal is continuous at vertices (jump %.1e) and jumps by at most %.2e rad across edges (midpoints)", jv, jmid);
-      printf("# facets sphere: %.0f bytes per facet\n", (double)FacetsBytes(m) / m->nf);
+      TU_CHECK((double)FacetsBytes(m) / m->nf <= 200.0, "facets sphere (%d triangles): the tool's storage %.0f bytes per facet, at most 200", m->nf, (double)FacetsBytes(m) / m->nf);
     }
     ToolsDestroy(n, &T);
   }

@@ -318,39 +318,46 @@ static void TreeClosest(const FacetsData *m, const double y[3], Best *b) { TreeC
    y: a warm start's bound r (the distance to a facet near the hint) is proved the smallest by
    those few cells, whatever the tool's size. */
 
-#define GRID_BITS 21
 #ifndef GRID_MAXCELLS
 #define GRID_MAXCELLS 27
+#endif
+#ifndef GRID_SCALE
+#define GRID_SCALE 2.0
 #endif
 
 static inline long GridIndex(const FacetsData *m, int i, double x) { return (long)floor((x - m->go[i]) / m->gh); }
 
-static inline long long GridKey(long ix, long iy, long iz) { return ((long long)ix << (2 * GRID_BITS)) | ((long long)iy << GRID_BITS) | (long long)iz; }
+/* a cell's key: its indices packed, ix + nx (iy + ny iz) (below INT_MAX: FacetsGridBuild) */
+static inline int GridKey(const FacetsData *m, long ix, long iy, long iz) { return (int)(ix + m->gn[0] * (iy + m->gn[1] * iz)); }
 
-static inline unsigned GridSlot(long long key, int cap)
+static inline unsigned GridSlot(long ix, long iy, long iz, int cap)
 { /* blocks of 4 x 4 x 4 cells on 64 consecutive slots (neighbouring cells share cache lines), the
      blocks scattered by splitmix64's finaliser */
-  const long long    M = (1LL << GRID_BITS) - 1;
-  const long long    ix = (key >> (2 * GRID_BITS)) & M, iy = (key >> GRID_BITS) & M, iz = key & M;
-  unsigned long long z  = (unsigned long long)GridKey(ix >> 2, iy >> 2, iz >> 2);
-  z                     = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z                     = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  unsigned long long z = ((unsigned long long)(ix >> 2) << 42) | ((unsigned long long)(iy >> 2) << 21) | (unsigned long long)(iz >> 2);
+  z                    = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z                    = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
   z ^= z >> 31;
   return (unsigned)((z << 6) | (unsigned long long)(((ix & 3) << 4) | ((iy & 3) << 2) | (iz & 3))) & (unsigned)(cap - 1);
 }
 
-static const FacetsCell *GridFind(const FacetsData *m, long long key)
+static const FacetsCell *GridFind(const FacetsData *m, long ix, long iy, long iz)
 {
-  for (unsigned s = GridSlot(key, m->gcap);; s = (s + 1) & (unsigned)(m->gcap - 1)) {
+  const int key = GridKey(m, ix, iy, iz);
+  for (unsigned s = GridSlot(ix, iy, iz, m->gcap);; s = (s + 1) & (unsigned)(m->gcap - 1)) {
     const FacetsCell *c = &m->gcell[s];
     if (c->key == key) return c;
     if (c->key < 0) return NULL;
   }
 }
 
-static FacetsCell *GridInsert(FacetsCell *cell, int cap, long long key)
+/* the grid's table while it is built: a cell's key, its list's start and length */
+typedef struct {
+  int key, start, count;
+} GridBuildCell;
+
+static GridBuildCell *GridInsert(GridBuildCell *cell, int cap, int key, long ix, long iy, long iz)
 {
-  for (unsigned s = GridSlot(key, cap);; s = (s + 1) & (unsigned)(cap - 1)) {
+  for (unsigned s = GridSlot(ix, iy, iz, cap);; s = (s + 1) & (unsigned)(cap - 1)) {
     if (cell[s].key == key) return &cell[s];
     if (cell[s].key < 0) {
       cell[s].key   = key;
@@ -373,10 +380,16 @@ static void FacetBoxCells(const FacetsData *m, int f, long lo[3], long hi[3])
   }
 }
 
+/* Cells of GRID_SCALE times the facets' mean largest box extent (a cube y -+ r with r below about a
+   facet's size meets at most 8 cells), grown where the cells' count would not fit an int key. The
+   table: a cell's key and the start of its list, the last facet of each list stored as -1 - f, at
+   most half full (slots a power of 2). */
 PetscErrorCode FacetsGridBuild(FacetsData *m)
 {
-  double bl[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, bh[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, ext = 0.0, h = 0.0;
-  int    ncell = 0;
+  double         bl[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, bh[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, h = 0.0;
+  int            ncell = 0, cap = 64;
+  long long      total = 0;
+  GridBuildCell *cell;
 
   PetscFunctionBeginUser;
   m->gcap   = 0;
@@ -389,8 +402,7 @@ PetscErrorCode FacetsGridBuild(FacetsData *m)
       bl[i] = fmin(bl[i], m->V[3 * k + i]);
       bh[i] = fmax(bh[i], m->V[3 * k + i]);
     }
-  for (int i = 0; i < 3; i++) ext = fmax(ext, bh[i] - bl[i]);
-  for (int f = 0; f < m->nf; f++) { /* cell size: the mean of the facets' largest box extents */
+  for (int f = 0; f < m->nf; f++) { /* the mean of the facets' largest box extents */
     double e = 0.0;
     for (int i = 0; i < 3; i++) {
       double a = HUGE_VAL, b = -HUGE_VAL;
@@ -402,69 +414,82 @@ PetscErrorCode FacetsGridBuild(FacetsData *m)
     }
     h += e / m->nf;
   }
-  h = fmax(h, ext / (double)((1L << GRID_BITS) - 8));
+  h *= GRID_SCALE;
   if (!(h > 0.0) || !isfinite(h)) PetscFunctionReturn(0);
+  for (;; h *= 1.25) { /* the cells' count within an int: ix + nx (iy + ny iz) a key */
+    double n = 1.0;
+    for (int i = 0; i < 3; i++) n *= floor((bh[i] - bl[i]) / h) + 5.0;
+    if (n < 0.5 * INT_MAX) break;
+  }
   m->gh = h;
-  for (int i = 0; i < 3; i++) m->go[i] = bl[i] - 2.0 * h;
-  {
-    long long total = 0;
-    int       cap   = 64;
-    for (int f = 0; f < m->nf; f++) {
-      long lo[3], hi[3];
-      FacetBoxCells(m, f, lo, hi);
-      total += (long long)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
-    }
-    if (total > INT_MAX / 2) PetscFunctionReturn(0); /* no grid: the hierarchy alone */
-    while (cap < 2 * m->nf) cap *= 2;
-    PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
-    for (int s = 0; s < cap; s++) m->gcell[s].key = -1;
-    for (int pass = 0; pass < 2; pass++) { /* counts, then the lists */
-      if (pass == 1) { /* the lists' starts in the order the facets first meet the cells (the
-                          hierarchy's order: neighbouring cells' lists are near), then the lists */
-        int start = 0;
-        PetscCall(PetscMalloc1((size_t)total, &m->glist));
-        for (int s = 0; s < cap; s++) m->gcell[s].start = -1;
-        for (int f = 0; f < m->nf; f++) {
-          long lo[3], hi[3];
-          FacetBoxCells(m, f, lo, hi);
-          for (long ix = lo[0]; ix <= hi[0]; ix++)
-            for (long iy = lo[1]; iy <= hi[1]; iy++)
-              for (long iz = lo[2]; iz <= hi[2]; iz++) {
-                FacetsCell *c = GridInsert(m->gcell, cap, GridKey(ix, iy, iz));
-                if (c->start < 0) {
-                  c->start = start;
-                  start += c->count;
-                  c->count = 0;
-                }
-              }
-        }
-        m->nglist = start;
-      }
+  for (int i = 0; i < 3; i++) {
+    m->go[i] = bl[i] - 2.0 * h;
+    m->gn[i] = GridIndex(m, i, bh[i]) + 3; /* the tool's cells 2 .. gn - 3 */
+  }
+  for (int f = 0; f < m->nf; f++) {
+    long lo[3], hi[3];
+    FacetBoxCells(m, f, lo, hi);
+    total += (long long)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+  }
+  if (total > INT_MAX / 2) PetscFunctionReturn(0); /* no grid: the hierarchy alone */
+  PetscCall(PetscMalloc1((size_t)cap, &cell));
+  for (int s = 0; s < cap; s++) cell[s].key = -1;
+  for (int pass = 0; pass < 2; pass++) { /* counts, then the lists */
+    if (pass == 1) { /* the lists' starts in the order the facets first meet the cells (the
+                        hierarchy's order: neighbouring cells' lists are near), then the lists */
+      int start = 0;
+      PetscCall(PetscMalloc1((size_t)total, &m->glist));
+      for (int s = 0; s < cap; s++) cell[s].start = -1;
       for (int f = 0; f < m->nf; f++) {
         long lo[3], hi[3];
         FacetBoxCells(m, f, lo, hi);
         for (long ix = lo[0]; ix <= hi[0]; ix++)
           for (long iy = lo[1]; iy <= hi[1]; iy++)
             for (long iz = lo[2]; iz <= hi[2]; iz++) {
-              FacetsCell *c = GridInsert(m->gcell, cap, GridKey(ix, iy, iz));
-              if (pass == 1) m->glist[c->start + c->count] = f;
-              else if (c->count == 0) ncell++;
-              c->count++;
-              if (pass == 0 && 2 * ncell > cap) { /* grow: rehash at twice the size */
-                FacetsCell *old = m->gcell;
-                const int   oc  = cap;
-                cap *= 2;
-                PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
-                for (int s = 0; s < cap; s++) m->gcell[s].key = -1;
-                for (int s = 0; s < oc; s++)
-                  if (old[s].key >= 0) *GridInsert(m->gcell, cap, old[s].key) = old[s];
-                PetscCall(PetscFree(old));
+              GridBuildCell *c = GridInsert(cell, cap, GridKey(m, ix, iy, iz), ix, iy, iz);
+              if (c->start < 0) {
+                c->start = start;
+                start += c->count;
+                c->count = 0;
               }
             }
       }
+      m->nglist = start;
     }
-    m->gcap = cap;
+    for (int f = 0; f < m->nf; f++) {
+      long lo[3], hi[3];
+      FacetBoxCells(m, f, lo, hi);
+      for (long ix = lo[0]; ix <= hi[0]; ix++)
+        for (long iy = lo[1]; iy <= hi[1]; iy++)
+          for (long iz = lo[2]; iz <= hi[2]; iz++) {
+            GridBuildCell *c = GridInsert(cell, cap, GridKey(m, ix, iy, iz), ix, iy, iz);
+            if (pass == 1) m->glist[c->start + c->count] = f;
+            else if (c->count == 0) ncell++;
+            c->count++;
+            if (pass == 0 && 2 * ncell > cap) { /* grow: rehash at twice the size */
+              GridBuildCell *old = cell;
+              const int      oc  = cap;
+              cap *= 2;
+              PetscCall(PetscMalloc1((size_t)cap, &cell));
+              for (int s = 0; s < cap; s++) cell[s].key = -1;
+              for (int s = 0; s < oc; s++)
+                if (old[s].key >= 0) { /* the key's cell indices back */
+                  const long k = old[s].key, kx = k % m->gn[0], ky = (k / m->gn[0]) % m->gn[1], kz = k / ((long)m->gn[0] * m->gn[1]);
+                  *GridInsert(cell, cap, old[s].key, kx, ky, kz) = old[s];
+                }
+              PetscCall(PetscFree(old));
+            }
+          }
+    }
   }
+  PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
+  for (int s = 0; s < cap; s++) {
+    m->gcell[s].key   = cell[s].key;
+    m->gcell[s].start = cell[s].start;
+    if (cell[s].key >= 0) m->glist[cell[s].start + cell[s].count - 1] = -1 - m->glist[cell[s].start + cell[s].count - 1]; /* the list's end */
+  }
+  PetscCall(PetscFree(cell));
+  m->gcap = cap;
   PetscFunctionReturn(0);
 }
 
@@ -534,7 +559,7 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
       lo[i] = GridIndex(m, i, y[i] - r);
       hi[i] = GridIndex(m, i, y[i] + r);
       if (lo[i] < 0) lo[i] = 0;
-      if (hi[i] > (1L << GRID_BITS) - 1) hi[i] = (1L << GRID_BITS) - 1;
+      if (hi[i] > m->gn[i] - 1) hi[i] = m->gn[i] - 1;
       if (hi[i] < lo[i]) return 0; /* no cell of the tool within r: none closer than b */
       n *= hi[i] - lo[i] + 1;
     }
@@ -550,12 +575,15 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
           if (o > 0.0) bd += o * o;
         }
         if (bd * (1.0 - 1e-9) > R2) continue;
-        const FacetsCell *c = GridFind(m, GridKey(ix, iy, iz));
+        const FacetsCell *c = GridFind(m, ix, iy, iz);
+        int               j, last;
         if (!c) continue;
-        for (int j = c->start; j < c->start + c->count; j++) {
-          const int k = m->glist[j];
-          int       q;
-          double    d2;
+        j = c->start;
+        do { /* the cell's list, its last facet stored as -1 - f */
+          int    k = m->glist[j++], q;
+          double d2;
+          last = k < 0;
+          if (last) k = -1 - k;
           if (SeenDistance(m, k, y, list != NULL, seen, ns, &q, &d2)) continue;
           if (Better(d2, k, b)) {
             b->d2 = d2;
@@ -564,7 +592,7 @@ static int GridClosestCollect(const FacetsData *m, const double y[3], Best *b, B
             else R2 = d2;
           }
           if (list && d2 <= R2 && ListAdd(list, nl, seen, q, k, d2)) return 1;
-        }
+        } while (!last);
       }
   return 0;
 }
@@ -668,7 +696,7 @@ static inline double BoxBox2(const FacetsNode *n, const double lo[3], const doub
 
 PetscErrorCode FacetsLocalBuild(FacetsData *m)
 {
-  int *vfs, *vf, *nb, stack[128], nbmax = 0, total = 0;
+  int *vfs, *vf, stack[128];
 
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc1((size_t)m->nv + 1, &vfs)); /* the facets around each vertex, increasing */
@@ -685,41 +713,13 @@ PetscErrorCode FacetsLocalBuild(FacetsData *m)
       }
     PetscCall(PetscFree(fill));
   }
-  for (int k = 0; k < m->nv; k++) nbmax = PetscMax(nbmax, vfs[k + 1] - vfs[k]);
-  PetscCall(PetscMalloc1(3 * (size_t)nbmax, &nb));
-  PetscCall(PetscMalloc1((size_t)m->nf + 1, &m->star));
-  for (int pass = 0; pass < 2; pass++) { /* the stars' sizes, then the stars */
-    if (pass == 1) PetscCall(PetscMalloc1((size_t)total, &m->st));
-    total = 0;
-    for (int f = 0; f < m->nf; f++) {
-      int nn = 0;
-      for (int c = 0; c < 3; c++)
-        for (int j = vfs[m->F[3 * f + c]]; j < vfs[m->F[3 * f + c] + 1]; j++) { /* merged, increasing */
-          const int g = vf[j];
-          int       t = nn;
-          while (t > 0 && nb[t - 1] > g) t--;
-          if (t > 0 && nb[t - 1] == g) continue;
-          for (int q = nn; q > t; q--) nb[q] = nb[q - 1];
-          nb[t] = g;
-          nn++;
-        }
-      if (pass == 1) {
-        m->star[f].start = total;
-        for (int t = 0; t < nn; t++) m->st[total + t] = nb[t];
-      }
-      total += nn;
-    }
-  }
-  m->star[m->nf].start = total;
-  m->star[m->nf].clear = 0.0f;
-  m->nst               = total;
-  PetscCall(PetscFree(nb));
-  PetscCall(PetscFree(vfs));
-  PetscCall(PetscFree(vf));
+  m->vfs = vfs;
+  m->vf  = vf;
+  PetscCall(PetscMalloc1((size_t)m->nf, &m->clear));
   for (int f = 0; f < m->nf; f++) {
     double    A[3][3], lo[3], hi[3], h2 = 0.0, cl, cl2;
     int       ns = 0;
-    const int s0 = m->star[f].start, s1 = m->star[f + 1].start;
+    const int *Ff = &m->F[3 * f];
     for (int c = 0; c < 3; c++) Corner(m, f, c, A[c]);
     for (int i = 0; i < 3; i++) {
       lo[i] = fmin(A[0][i], fmin(A[1][i], A[2][i]));
@@ -735,8 +735,8 @@ PetscErrorCode FacetsLocalBuild(FacetsData *m)
       if (n->count > 0) {
         for (int g = n->first; g < n->first + n->count; g++) {
           double B[3][3], bl[3], bh[3], o2 = 0.0;
-          int    in = 0;
-          for (int t = s0; t < s1 && !in; t++) in = m->st[t] == g;
+          int    in = 0; /* in f's star: sharing a vertex with it */
+          for (int c = 0; c < 3 && !in; c++) in = m->F[3 * g + c] == Ff[0] || m->F[3 * g + c] == Ff[1] || m->F[3 * g + c] == Ff[2];
           if (in) continue;
           for (int c = 0; c < 3; c++) Corner(m, g, c, B[c]);
           for (int i = 0; i < 3; i++) { /* the boxes first */
@@ -758,8 +758,8 @@ PetscErrorCode FacetsLocalBuild(FacetsData *m)
       } else cl = cl2 = 0.0; /* too deep: no certificate for this facet */
     }
     cl *= 1.0 - 1e-9; /* the round-off of the distances */
-    m->star[f].clear = (float)cl;
-    if ((double)m->star[f].clear > cl) m->star[f].clear = nextafterf(m->star[f].clear, 0.0f);
+    m->clear[f] = (float)cl;
+    if ((double)m->clear[f] > cl) m->clear[f] = nextafterf(m->clear[f], 0.0f);
   }
   PetscFunctionReturn(0);
 }
@@ -771,25 +771,30 @@ static int LocalClosestCollect(const FacetsData *m, const double y[3], Best *b, 
 {
   const int    f0 = b->f;
   const double R2 = list ? CandidateRadius2(m, b->d2) : b->d2;
-  if (!m->star || f0 == INT_MAX) return 1;
-  if (sqrt(b->d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) >= (double)m->star[f0].clear) return 1;
+  if (!m->clear || f0 == INT_MAX) return 1;
+  if (sqrt(b->d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) >= (double)m->clear[f0]) return 1;
   if (list) *nl = 0;
   {
-    const int j0 = m->star[f0].start, j1 = m->star[f0 + 1].start;
-    for (int j = j0; j < j1; j++) Prefetch(&m->F[3 * m->st[j]]); /* the star's facets, then their vertices: their cache misses overlap */
-    for (int j = j0; j < j1; j++)
-      for (int c = 0; c < 3; c++) Prefetch(&m->V[3 * m->F[3 * m->st[j] + c]]);
-    for (int j = j0; j < j1; j++) {
-      const int k = m->st[j];
-      int       q;
-      double    d2;
-      if (SeenDistance(m, k, y, list != NULL, seen, ns, &q, &d2)) continue;
-      if (Better(d2, k, b)) {
-        b->d2 = d2;
-        b->f  = k;
+    const int *V0 = &m->F[3 * f0];
+    for (int c = 0; c < 3; c++) /* the star's facets, then their vertices: their cache misses overlap */
+      for (int j = m->vfs[V0[c]]; j < m->vfs[V0[c] + 1]; j++) Prefetch(&m->F[3 * m->vf[j]]);
+    for (int c = 0; c < 3; c++)
+      for (int j = m->vfs[V0[c]]; j < m->vfs[V0[c] + 1]; j++)
+        for (int i = 0; i < 3; i++) Prefetch(&m->V[3 * m->F[3 * m->vf[j] + i]]);
+    for (int c = 0; c < 3; c++)
+      for (int j = m->vfs[V0[c]]; j < m->vfs[V0[c] + 1]; j++) {
+        const int  k = m->vf[j], *Fk = &m->F[3 * k];
+        int        q, dup = 0;
+        double     d2;
+        for (int c2 = 0; c2 < c && !dup; c2++) dup = Fk[0] == V0[c2] || Fk[1] == V0[c2] || Fk[2] == V0[c2]; /* met around an earlier vertex */
+        if (dup) continue;
+        if (SeenDistance(m, k, y, list != NULL, seen, ns, &q, &d2)) continue;
+        if (Better(d2, k, b)) {
+          b->d2 = d2;
+          b->f  = k;
+        }
+        if (list && d2 <= R2 && ListAdd(list, nl, seen, q, k, d2)) return 1;
       }
-      if (list && d2 <= R2 && ListAdd(list, nl, seen, q, k, d2)) return 1;
-    }
   }
   return 0;
 }
@@ -1008,8 +1013,9 @@ static int FacetsClosest(const Patch *p, const double y[3], double maxdist, doub
   return FacetsFinish(p, m, y, L, &b, list, &nl, c);
 }
 
-/* The same result as FacetsClosest: the hint's facet and a greedy walk over its neighbours give a
-   facet and a bound; the facet's star proves (or improves) it when the facet's clearance allows
+/* The same result as FacetsClosest: the hint's facet's star when its clearance allows; else a
+   greedy walk from it over the neighbours gives a facet and a bound; the facet's star proves (or
+   improves) it when the facet's clearance allows
    (LocalClosestCollect), else the grid's cells within that bound; where the bound spans more
    cells, the hierarchy from its root with that bound (a walk that ends beyond maxdist: maxdist) */
 static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, double L, double hxi, double heta, PatchCandidate *c)
@@ -1019,13 +1025,17 @@ static int FacetsClosestHint(const Patch *p, const double y[3], double maxdist, 
   int               reg, f = FacetsDecode(m, hxi, heta, &u, &v), nl = 0, ns = 1;
   Best              b;
   Best              list[256];
-  if (m->star) {
-    Prefetch(&m->star[f]);
+  if (m->clear) {
+    Prefetch(&m->clear[f]);
     Prefetch(&m->adj[3 * f]);
   }
   b.d2 = TriClosest(m, f, y, &u, &v, &reg);
   b.f  = f;
   Seen              seen[SEEN_MAX] = {{f, 0, b.d2}};
+  /* the hint's facet first: where its clearance proves its star holds every facet within reach (a
+     node that moved less than about its facet's size since), the star alone decides, without the
+     walk (whose farther facets and their stars are more cache lines to read) */
+  if (!(maxdist < HUGE_VAL && b.d2 > maxdist * maxdist) && !LocalClosestCollect(m, y, &b, m->smooth ? list : NULL, &nl, seen, &ns)) return FacetsFinish(p, m, y, L, &b, list, &nl, c);
   for (int step = 0; step < 64; step++) {
     int moved = 0;
     for (int e = 0; e < 3; e++) {
@@ -1155,8 +1165,9 @@ static PetscErrorCode FacetsDestroy(Patch *p)
   PetscCall(PetscFree(m->node));
   PetscCall(PetscFree(m->gcell));
   PetscCall(PetscFree(m->glist));
-  PetscCall(PetscFree(m->star));
-  PetscCall(PetscFree(m->st));
+  PetscCall(PetscFree(m->clear));
+  PetscCall(PetscFree(m->vfs));
+  PetscCall(PetscFree(m->vf));
   PetscCall(PetscFree(m));
   p->data = NULL;
   PetscFunctionReturn(0);
@@ -1164,7 +1175,15 @@ static PetscErrorCode FacetsDestroy(Patch *p)
 
 size_t FacetsBytes(const FacetsData *m)
 {
-  return sizeof(*m) + (size_t)m->nv * (3 * sizeof(double) + 1) + (size_t)m->nf * (9 * sizeof(int) + 1) + (size_t)m->nn * 3 * sizeof(double) + (size_t)m->nnode * sizeof(FacetsNode) + (size_t)m->gcap * sizeof(FacetsCell) + (size_t)m->nglist * sizeof(int) + (m->star ? ((size_t)m->nf + 1) * sizeof(FacetsStar) + (size_t)m->nst * sizeof(int) : 0);
+  return sizeof(*m) + (size_t)m->nv * (3 * sizeof(double) + 1) + (size_t)m->nf * (9 * sizeof(int) + 1) + (size_t)m->nn * 3 * sizeof(double) + (size_t)m->nnode * sizeof(FacetsNode) + (size_t)m->gcap * sizeof(FacetsCell) + (size_t)m->nglist * sizeof(int) + (m->clear ? (size_t)m->nf * (sizeof(float) + 3 * sizeof(int)) + ((size_t)m->nv + 1) * sizeof(int) : 0);
+}
+
+/* the storage of FacetsBytes per array, in bytes per facet (scripts/bench_tool_facets.c -bench_bytes) */
+void FacetsBytesBreakdown(const FacetsData *m, FILE *fp)
+{
+  const double nf = (double)m->nf;
+  fprintf(fp, "facets %d vertices %d normals %d nodes %d grid slots %d grid entries %d\n", m->nf, m->nv, m->nn, m->nnode, m->gcap, m->nglist);
+  fprintf(fp, "V %.1f vbnd %.1f F %.1f adj %.1f C %.1f curved %.1f N %.1f node %.1f gcell %.1f glist %.1f clear %.1f vfs+vf %.1f total %.1f\n", 24.0 * m->nv / nf, m->nv / nf, 12.0, 12.0, 12.0, 1.0, 24.0 * m->nn / nf, (double)sizeof(FacetsNode) * m->nnode / nf, (double)sizeof(FacetsCell) * m->gcap / nf, 4.0 * m->nglist / nf, m->clear ? 4.0 : 0.0, m->clear ? (12.0 * nf + 4.0 * (m->nv + 1)) / nf : 0.0, (double)FacetsBytes(m) / nf);
 }
 
 int FacetsBruteClosest(const Patch *p, const double y[3], double *d2)
@@ -1240,13 +1259,18 @@ double FacetsPatchDistance2(const Patch *p, int f, const double y[3], int *stati
   return d2;
 }
 
-double FacetsClearance(const Patch *p, int f, int *nstar, const int **star)
-{
+double FacetsClearance(const Patch *p, int f, int *nstar, int star[], int maxstar)
+{ /* the star: the facets around f's vertices, each once */
   const FacetsData *m = (const FacetsData *)p->data;
-  if (!m->star) return 0.0;
-  *nstar = m->star[f + 1].start - m->star[f].start;
-  *star  = &m->st[m->star[f].start];
-  return (double)m->star[f].clear;
+  *nstar              = 0;
+  if (!m->clear) return 0.0;
+  for (int c = 0; c < 3; c++)
+    for (int j = m->vfs[m->F[3 * f + c]]; j < m->vfs[m->F[3 * f + c] + 1]; j++) {
+      int in = 0;
+      for (int t = 0; t < *nstar && !in; t++) in = star[t] == m->vf[j];
+      if (!in && *nstar < maxstar) star[(*nstar)++] = m->vf[j];
+    }
+  return (double)m->clear[f];
 }
 
 int FacetsStarCertifies(const Patch *p, int f, const double y[3])
@@ -1255,7 +1279,7 @@ int FacetsStarCertifies(const Patch *p, int f, const double y[3])
   double            u, v;
   int               reg;
   const double      d2 = TriClosest(m, f, y, &u, &v, &reg), R2 = m->smooth ? CandidateRadius2(m, d2) : d2;
-  return m->star && sqrt(d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) < (double)m->star[f].clear;
+  return m->clear && sqrt(d2) * (1.0 + 1e-12) + sqrt(R2) * (1.0 + 1e-12) < (double)m->clear[f];
 }
 
 int FacetsOfParameters(const Patch *p, double xi, double eta, double *u, double *v) { return FacetsDecode((const FacetsData *)p->data, xi, eta, u, v); }

@@ -9,6 +9,11 @@
    along n for a patch of a smooth surface, so that the nodes beside a point's foot are pruned,
    which the axis-aligned box of a tilted patch cannot do); a leaf holds the facets first ..
    first+count-1, an inner node (count 0) its children first and first+1 */
+/* a leaf's facets at most (a node of more is split in two at its median) */
+#ifndef FACETS_LEAF
+#define FACETS_LEAF 8
+#endif
+
 typedef struct {
   float lo[3], hi[3];
   float n[3], t1[3], olo[3], ohi[3];
@@ -27,22 +32,15 @@ static inline void FacetsNodeAxes(const FacetsNode *nd, double a[3][3])
   a[2][2] = a[0][0] * a[1][1] - a[0][1] * a[1][0];
 }
 
-/* a cell of the bucket grid: its key (the packed cell indices) and its facets glist[start .. start+count-1] */
+/* a slot of the bucket grid's table: its cell's key (the packed cell indices; -1: empty) and the
+   start of its facets' list in glist (the list's last facet stored as -1 - f) */
 typedef struct {
-  long long key;
-  int       start, count;
+  int key, start;
 } FacetsCell;
-
-/* a triangle's star and clearance: the start of its star's list, and a lower bound of the distance
-   from the triangle to every triangle outside its star (rounded down; the local certificate) */
-typedef struct {
-  int   start;
-  float clear;
-} FacetsStar;
 
 typedef struct {
   char           file[PETSC_MAX_PATH_LEN];
-  int            nv, nf, nn, nnode, nopen, nst;
+  int            nv, nf, nn, nnode, nopen;
   double        *V;     /* 3 nv: vertex coordinates (reference position)                          */
   int           *F;     /* 3 nf: vertex ids of each triangle, counterclockwise seen from the normal */
   int           *adj;   /* 3 nf: the neighbour across edge e (P_e P_e+1); -1 open, -2 non-manifold */
@@ -53,14 +51,16 @@ typedef struct {
                             angle): curved by the smoothing                                        */
   FacetsNode    *node;  /* nnode                                                                    */
   double         L;     /* the surface's size (bounding-box diagonal)                               */
-  double         go[3], gh; /* bucket grid (warm start): origin and cell size (about a facet's size)   */
+  double         go[3], gh; /* bucket grid (warm start): origin and cell size (about twice a facet's size) */
+  long           gn[3]; /* its cells along each axis (gn[0] gn[1] gn[2] below INT_MAX)              */
   int            gcap, nglist; /* its hash table's slots (a power of 2) and entries                  */
   FacetsCell    *gcell; /* gcap slots (count 0: empty)                                              */
   int           *glist; /* nglist: the facets whose bounding box meets each cell                     */
-  FacetsStar    *star;  /* nf + 1: each triangle's star (the facets sharing a vertex with it, itself
-                           included: st[star[f].start .. star[f+1].start - 1], increasing) and its
-                           clearance                                                              */
-  int           *st;
+  float         *clear; /* nf: each triangle's clearance, a lower bound of the distance from it to every
+                           triangle outside its star (the facets sharing a vertex with it), rounded
+                           down (the local certificate)                                            */
+  int           *vfs, *vf; /* nv + 1, 3 nf: the facets around each vertex, vf[vfs[k] .. vfs[k+1]-1],
+                           increasing (a triangle's star: the union of its three vertices' lists)  */
   double         dev;   /* the largest distance of a smoothed facet from its plane triangle          */
   int            smooth;
   double         feature_deg;
@@ -85,6 +85,7 @@ PetscErrorCode FacetsPatchFromOptions(PetscOptionItems *PetscOptionsObject, Patc
 /* the format of path: from `format` if set, else its extension; "" if unknown */
 void           FacetsFormat(const char path[], const char format[], char out[16]);
 size_t         FacetsBytes(const FacetsData *m);
+void           FacetsBytesBreakdown(const FacetsData *m, FILE *fp);
 /* the bucket grid of the facets (after the facets and vertices are final) */
 PetscErrorCode FacetsGridBuild(FacetsData *m);
 /* each triangle's star and clearance (after the hierarchy is final) */
@@ -101,7 +102,7 @@ void FacetsEncodeForTest(int f, double u, double v, double *xi, double *eta);
 double FacetsTriTriDistance2(const double A[3][3], const double B[3][3]);
 /* for the tests: the squared distance of y from facet f's (smoothed) patch, and whether it is a stationary point */
 double FacetsPatchDistance2(const Patch *p, int f, const double y[3], int *stationary);
-double FacetsClearance(const Patch *p, int f, int *nstar, const int **star);
+double FacetsClearance(const Patch *p, int f, int *nstar, int star[], int maxstar);
 int    FacetsStarCertifies(const Patch *p, int f, const double y[3]);
 int FacetsOfParameters(const Patch *p, double xi, double eta, double *u, double *v);
 #endif

@@ -823,6 +823,28 @@ static void OrientedBox(Builder *B, FacetsNode *n, int lo, int hi)
   }
 }
 
+/* The facets perm[lo..hi) in the order of a hierarchy with leaves of at most 4 facets (each range
+   split at its median along the longest extent of its centroids), inside a leaf of up to
+   FACETS_LEAF facets: the facets' indices, and with them the ties between equally close facets,
+   do not depend on the leaves' size */
+static void Order(Builder *B, int lo, int hi)
+{
+  double clo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, chi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  int    ax     = 0;
+  if (hi - lo <= 4) return;
+  for (int k = lo; k < hi; k++)
+    for (int i = 0; i < 3; i++) {
+      clo[i] = fmin(clo[i], B->c[3 * B->perm[k] + i]);
+      chi[i] = fmax(chi[i], B->c[3 * B->perm[k] + i]);
+    }
+  for (int i = 1; i < 3; i++)
+    if (chi[i] - clo[i] > chi[ax] - clo[ax]) ax = i;
+  const int mid = (lo + hi) / 2;
+  Select(B->c, B->perm, lo, hi, mid, ax);
+  Order(B, lo, mid);
+  Order(B, mid, hi);
+}
+
 static void Build(Builder *B, int me, int lo, int hi)
 {
   FacetsNode *n = &B->node[me];
@@ -848,7 +870,8 @@ static void Build(Builder *B, int me, int lo, int hi)
     n->hi[i] = h;
   }
   OrientedBox(B, n, lo, hi);
-  if (hi - lo <= 4) {
+  if (hi - lo <= FACETS_LEAF) {
+    Order(B, lo, hi);
     n->first = lo;
     n->count = hi - lo;
     return;
@@ -1010,6 +1033,7 @@ PetscErrorCode FacetsBuild(MPI_Comm comm, Patch *p, const char path[], FacetsRaw
     Builder B = {cen, perm, m->node, 1, m->V, raw->F};
     Build(&B, 0, 0, nf);
     m->nnode = B.nnode;
+    PetscCall(PetscRealloc(sizeof(FacetsNode) * (size_t)m->nnode, &m->node));
   }
   PetscCall(PetscFree(cen));
   PetscCall(PetscMalloc1(3 * (size_t)nf, &F));
