@@ -32,6 +32,7 @@ typedef struct {
   /* options */
   PetscBool  assembly_coo;   /* Jacobian by coordinate (COO) assembly instead of MatSetValues */
   char       mat_type[64];   /* -assembly_mat_type: the Jacobian's matrix type (empty: the DM's, AIJ) */
+  PetscBool  near_null;      /* -assembly_near_null_space: the rigid-body modes on the Jacobian */
   LUOrdering lu_ordering;    /* LU by MUMPS: METIS nested dissection (direct calls) or MUMPS's own */
   PetscReal  fault_nan_load; /* testing: once, a NaN in the residual at this load (< 0: off) */
   PetscBool  fault_done;

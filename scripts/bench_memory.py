@@ -35,6 +35,11 @@ MESHES = [(33, 80, 4), (46, 114, 4), (65, 161, 4)]
 SOLVERS = [("LU (MUMPS, METIS order)", []), ("GMRES + GAMG", ["-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-8", "-ksp_max_it", "1000"])]
 RUN_ARGS = ["-tool_punch_motion", "0,0,1", "-load_steps", "1", "-load_dt_max", "1", "-output_interval", "0", "-log_view", "-memory_view"]
 
+# the large-sheet solver is measured by scripts/bench_million.py (its own section)
+POINTER = ("The iterative solver for large sheets (`cases/solver_amg_sheet.opts`: BiCGStab, BoomerAMG with aggressive "
+           "coarsening on the first level, the Jacobian made in hypre's format without its auxiliary assembly structure, no "
+           "rigid-body modes) on the whole blank of `cases/hemisphere_friction_disk.opts` is measured by "
+           "`scripts/bench_million.py`, section One million hexahedra, with where the memory goes.")
 MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)")
 MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
 DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
@@ -110,6 +115,8 @@ def main():
         L.append("")
         L.append("Per 100 000 hexahedra on one rank: " + "; ".join(
             f"{r['solver']} {r['rss'] / 2**30 * 1e5 / r['cells']:.2f} GiB" for r in big) + ".")
+    L.append("")
+    L.append(POINTER)
     L.append("")
     benchutil.write_doc_section(a.output, HEADING, "\n".join(L) + "\n")
     log(f"wrote {HEADING!r} to {a.output}")

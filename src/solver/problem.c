@@ -341,11 +341,13 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
   pb->lu_ordering    = LU_ORDERING_ND;
   pb->assembly_coo   = PETSC_TRUE; /* coordinate assembly by default: the faster Jacobian (doc/performance.md) */
   pb->fault_nan_load = -1;
+  pb->near_null      = PETSC_TRUE;
   PetscCallMPI(MPI_Comm_rank(comm, &pb->rank));
   PetscCallMPI(MPI_Comm_size(comm, &pb->size));
   PetscOptionsBegin(comm, NULL, "Assembly and linear solver", NULL);
   PetscCall(PetscOptionsBool("-assembly_coo", "Assemble the Jacobian in coordinate form (faster, more memory)", NULL, pb->assembly_coo, &pb->assembly_coo, NULL));
   PetscCall(PetscOptionsString("-assembly_mat_type", "Matrix type of the Jacobian (default: the mesh's, AIJ; hypre: assembled in hypre's format, which -pc_type hypre then uses without a copy)", NULL, pb->mat_type, pb->mat_type, sizeof(pb->mat_type), NULL));
+  PetscCall(PetscOptionsBool("-assembly_near_null_space", "Attach the six rigid-body modes to the Jacobian as its near null space (GAMG's coarse spaces; BoomerAMG uses them only with -pc_hypre_boomeramg_vec_interp_variant, but PCHYPRE copies them)", NULL, pb->near_null, &pb->near_null, NULL));
   {
     const char *ords[] = {"mumps", "nd", "LUOrdering", "LU_ORDERING_", NULL};
     PetscInt    o      = (PetscInt)pb->lu_ordering;
@@ -366,6 +368,42 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
   PetscCall(PCSetType(pc, PCLU));
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscCall(SNESSetFromOptions(pb->snes));
+  PetscFunctionReturn(0);
+}
+
+/* The Jacobian in hypre's format (-assembly_mat_type hypre), preallocated and filled with zeros on
+   the DM's pattern as DMCreateMatrix() does, but told before its preallocation that whole rows
+   will come (MAT_SORTED_FULL). PETSc 3.18's MATHYPRE otherwise keeps beside the matrix hypre's
+   auxiliary assembly structure: per row, arrays of column indices and values that it fills first
+   and copies into the matrix at the assembly (NeedAux), and which it creates anew after every
+   assembly (MatAssemblyEnd_HYPRE). With the option, on more than one rank hypre writes the zeros
+   of the pattern straight into its matrix (exact row sizes from the preallocation), and on any
+   number of ranks no auxiliary structure is made again after an assembly. What later assemblies
+   add goes straight into the assembled matrix in every case: hypre's AddToValues on an assembled
+   matrix looks each (row, column) up in the row and adds (an entry off the pattern is an error);
+   rows of other ranks travel in hypre's own off-processor buffers, made when needed and freed at
+   the assembly. So MAT_SORTED_FULL, whose name speaks of the first fill, only changes what is
+   kept, not what is assembled (doc/performance.md, "Where the memory goes"). */
+static PetscErrorCode CreateHypreJacobian(Problem *pb, Mat *J)
+{
+  const Mesh *m = pb->mesh;
+  PetscInt    nl, N, bs, *dnz, *onz, *dnzu, *onzu;
+  Vec         g;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(m->dm, &g));
+  PetscCall(VecGetLocalSize(g, &nl));
+  PetscCall(VecGetSize(g, &N));
+  PetscCall(VecGetBlockSize(g, &bs));
+  PetscCall(DMRestoreGlobalVector(m->dm, &g));
+  PetscCall(MatCreate(pb->comm, J));
+  PetscCall(MatSetSizes(*J, nl, nl, N, N));
+  PetscCall(MatSetBlockSize(*J, bs));
+  PetscCall(MatSetType(*J, MATHYPRE));
+  PetscCall(MatSetOption(*J, MAT_SORTED_FULL, PETSC_TRUE));
+  PetscCall(PetscCalloc4(nl / bs, &dnz, nl / bs, &onz, nl / bs, &dnzu, nl / bs, &onzu));
+  PetscCall(DMPlexPreallocateOperator(m->dm, bs, dnz, onz, dnzu, onzu, *J, PETSC_TRUE));
+  PetscCall(PetscFree4(dnz, onz, dnzu, onzu));
   PetscFunctionReturn(0);
 }
 
@@ -423,8 +461,13 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   PetscCheck(!pb->mat_type[0] || !pb->ntu, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s: not with force-driven tools (their unknowns extend an AIJ matrix); leave it out", pb->mat_type);
   PetscCheck(!pb->mat_type[0] || !pb->assembly_coo, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s needs the MatSetValues assembly: add -assembly_coo 0", pb->mat_type);
   if (!pb->ntu) {
-    if (pb->mat_type[0]) PetscCall(DMSetMatType(m->dm, pb->mat_type));
-    PetscCall(DMCreateMatrix(m->dm, &pb->J));
+    PetscBool ishypre;
+    PetscCall(PetscStrcmp(pb->mat_type, MATHYPRE, &ishypre));
+    if (ishypre) PetscCall(CreateHypreJacobian(pb, &pb->J));
+    else {
+      if (pb->mat_type[0]) PetscCall(DMSetMatType(m->dm, pb->mat_type));
+      PetscCall(DMCreateMatrix(m->dm, &pb->J));
+    }
   }
   else {
     /* the DM's pattern extended by the rows and columns of the tool unknowns: every slave node
@@ -457,7 +500,7 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
       PetscCall(MatDestroy(&pre));
     }
   }
-  PetscCall(SetNearNullSpace(pb, pb->J));
+  if (pb->near_null) PetscCall(SetNearNullSpace(pb, pb->J));
   if (!(pb->ntu && pb->assembly_coo)) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE)); /* (not before the preallocation of an extended matrix) */
   if (pb->assembly_coo) {
     /* coordinate assembly: the element blocks' (i, j) once, then the contact blocks; each
