@@ -46,6 +46,7 @@ typedef struct {
   PetscBool  release;   /* force-controlled release (ContactReleaseTool): in x, y, z the target  */
   PetscReal  rel_t[2];  /* goes linearly from rel_f, the force at rel_t[0], to 0 at rel_t[1]      */
   PetscReal  rel_f[3];
+  PetscBool  moving;    /* displacement-driven and moved by the step being solved (ContactSeed)  */
 } ToolContact;
 
 typedef struct {
@@ -897,18 +898,17 @@ PetscErrorCode ContactDestroy(Contact *c)
 static inline PetscBool PressedOn(const ContactState *cc, PetscInt tool) { return (cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool == tool) ? PETSC_TRUE : PETSC_FALSE; }
 
 /* node i, paired with tool now (its law: mu), is held closed (ContactKeepCommitted): it was
-   pressed on that tool in the committed state, and the tool is frictionless or (keep all) has no
-   direction driven by force. A force-driven tool's position is an unknown of the solve, set by the
-   nodes' forces on it: holding its frictional nodes at the committed friction, with a tangential
-   spring anchored at the predictor, pins the tool where the predictor put it and fights that
-   unknown (the NUMISHEET'93 mild-steel cup's force-driven holder: ten cuts down to 1e-5 of the
-   step and a failed run at the start of the draw; held like frictionless tools, the run goes on
-   with fewer cuts than without the keep) */
+   pressed on that tool in the committed state, and the tool is frictionless or (keep all) moves
+   by a prescribed displacement in the step being solved (ToolContact.moving). The keep is for the
+   nodes that the predictor's motion of their tool would open or push in: a tool at rest is not
+   moved by the predictor, and a force-driven tool's position is an unknown of the solve, set by
+   the nodes' forces on it, which a tangential spring anchored at the predictor would fight.
+   Holding every frictional tool's nodes failed the NUMISHEET'93 mild-steel cup at the start of
+   the draw (its force-driven holder), holding all but the force-driven ones the aluminium cup
+   (doc/contact.md, Augmented Lagrangian) */
 static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, PetscInt tool, double mu)
 {
-  const ToolDrive *dr = contact->tc[tool].drive;
-  const PetscBool  fd = (dr[0] == TOOL_DRIVE_FORCE || dr[1] == TOOL_DRIVE_FORCE || dr[2] == TOOL_DRIVE_FORCE) ? PETSC_TRUE : PETSC_FALSE;
-  return (contact->keep && ((contact->keep > 1 && !fd) || !(mu > 0)) && PressedOn(&contact->cst_c[i], tool)) ? PETSC_TRUE : PETSC_FALSE;
+  return (contact->keep && ((contact->keep > 1 && contact->tc[tool].moving) || !(mu > 0)) && PressedOn(&contact->cst_c[i], tool)) ? PETSC_TRUE : PETSC_FALSE;
 }
 
 /* the committed normal of node i (0 when it carries no normal force): f - f_T = t_N n */
@@ -931,6 +931,17 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
     contact->kscale   = 1; /* the penalties as given: a step and each retry start from them */
     contact->omega[0] = contact->omega[1] = 1;
     contact->aug_pen = contact->aug_dlam = 0;
+    for (PetscInt t = 0; t < contact->ntools; t++) {
+      ToolContact *tc = &contact->tc[t];
+      double       sc[3], sn[3];
+      tc->moving = PETSC_TRUE;
+      for (int k = 0; k < 3; k++)
+        if (tc->drive[k] == TOOL_DRIVE_FORCE) tc->moving = PETSC_FALSE;
+      if (!tc->moving) continue;
+      CommittedShift(contact, t, sc);
+      CurShift(contact, t, lambda, sn);
+      tc->moving = (sn[0] != sc[0] || sn[1] != sc[1] || sn[2] != sc[2]) ? PETSC_TRUE : PETSC_FALSE;
+    }
   }
   if (!contact->ns) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(contact->ev_pairing, 0, 0, 0, 0));
