@@ -524,6 +524,12 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
           PetscCall(SNESSetTolerances(snes, a, rt, stol, maxit, maxf));
           tol_changed = PETSC_TRUE;
         }
+        /* a solve after a multiplier update makes at least one Newton iteration: with none (its
+           residual already below the raised tolerance) the displacements do not answer the update,
+           the next update adds the same penalty force again, and the multipliers drift from a
+           frozen state until a solve iterates and jumps (a decision that round-off made: 2-rank
+           runs of the seed punch with friction took 140 or 145 iterations) */
+        if (aug) PetscCall(SNESSetForceIteration(snes, st->aug_loops > 0 ? PETSC_TRUE : PETSC_FALSE));
         PetscCall(SNESSolve(snes, NULL, pb->U));
         if (contact) PetscCall(ContactKeepCommitted(pb->contact, 0)); /* (a solve that ended before its first line search) */
         PetscCall(SNESGetConvergedReason(snes, &reason));
@@ -560,6 +566,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         }
       }
       if (tol_changed) PetscCall(SNESSetTolerances(snes, atol0, rtol, stol, maxit, maxf));
+      if (aug) PetscCall(SNESSetForceIteration(snes, PETSC_FALSE));
       if (reason > 0) break;
       if (aug && !st->aug_failed && !softened) {
         /* -contact_augmented_soften: a failed Newton solve of an augmented step is retried once at
