@@ -231,6 +231,20 @@ int main(int argc, char **argv)
         PetscCall(ContactKeepCommitted(s.c, 0));
         CHECK_ALL(nfail == 0 && e2[0] < 1e-9 && e2[1] < 1e-9, "mu %g, keep 2: a node entering contact has no friction while the keep lasts, K_T ds after; the pressed ones K_T ds throughout (relative errors %.1e, %.1e)", (double)mu, e2[0], e2[1]);
       }
+      /* keep 2 with the step's seed at the load 0, where the plane is at rest (as committed): the
+         lifted frictional nodes are not held (the keep holds them on tools the step moves), the
+         frictionless ones are */
+      Displace(&s.m, u, -pen, -pen);
+      PetscCall(ContactSeed(s.c, u, 0, PETSC_TRUE));
+      Displace(&s.m, u, g, g);
+      PetscCall(ContactKeepCommitted(s.c, 2));
+      PetscCall(PetscArrayzero(f, nloc));
+      PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+      PetscCall(ContactKeepCommitted(s.c, 0));
+      err = 0;
+      for (PetscInt v = 0; v < s.m.nv; v++)
+        if (s.m.X[3 * v + 2] == 0 && s.m.vowned[v] && s.m.X[3 * v] != 1) err = PetscMax(err, fabs(PetscRealPart(f[s.m.vloff[v] + 2]) - (mu > 0 ? 0 : KN * g)) / (KN * g));
+      CHECK_ALL(nfail == 0 && err < 1e-12, "mu %g, keep 2 on a tool at rest: the lifted nodes %s (relative error %.1e)", (double)mu, mu > 0 ? "are open" : "are held", err);
       PetscCall(MatDestroy(&Jd));
       PetscCall(PetscFree(cv));
     }
