@@ -434,27 +434,14 @@ PetscErrorCode FacetsGridBuild(FacetsData *m)
   if (total > INT_MAX / 2) PetscFunctionReturn(0); /* no grid: the hierarchy alone */
   PetscCall(PetscMalloc1((size_t)cap, &cell));
   for (int s = 0; s < cap; s++) cell[s].key = -1;
-  for (int pass = 0; pass < 2; pass++) { /* counts, then the lists */
-    if (pass == 1) { /* the lists' starts in the order the facets first meet the cells (the
-                        hierarchy's order: neighbouring cells' lists are near), then the lists */
-      int start = 0;
+  /* three passes over the cells of each facet's box: count the facets per cell (growing the
+     table), give each list its start in the order the facets first meet the cells (the
+     hierarchy's order: neighbouring cells' lists are near), fill the lists */
+  for (int pass = 0; pass < 3; pass++) {
+    int start = 0;
+    if (pass == 1) {
       PetscCall(PetscMalloc1((size_t)total, &m->glist));
       for (int s = 0; s < cap; s++) cell[s].start = -1;
-      for (int f = 0; f < m->nf; f++) {
-        long lo[3], hi[3];
-        FacetBoxCells(m, f, lo, hi);
-        for (long ix = lo[0]; ix <= hi[0]; ix++)
-          for (long iy = lo[1]; iy <= hi[1]; iy++)
-            for (long iz = lo[2]; iz <= hi[2]; iz++) {
-              GridBuildCell *c = GridInsert(cell, cap, GridKey(m, ix, iy, iz), ix, iy, iz);
-              if (c->start < 0) {
-                c->start = start;
-                start += c->count;
-                c->count = 0;
-              }
-            }
-      }
-      m->nglist = start;
     }
     for (int f = 0; f < m->nf; f++) {
       long lo[3], hi[3];
@@ -463,7 +450,15 @@ PetscErrorCode FacetsGridBuild(FacetsData *m)
         for (long iy = lo[1]; iy <= hi[1]; iy++)
           for (long iz = lo[2]; iz <= hi[2]; iz++) {
             GridBuildCell *c = GridInsert(cell, cap, GridKey(m, ix, iy, iz), ix, iy, iz);
-            if (pass == 1) m->glist[c->start + c->count] = f;
+            if (pass == 1) {
+              if (c->start < 0) {
+                c->start = start;
+                start += c->count;
+                c->count = 0;
+              }
+              continue;
+            }
+            if (pass == 2) m->glist[c->start + c->count] = f;
             else if (c->count == 0) ncell++;
             c->count++;
             if (pass == 0 && 2 * ncell > cap) { /* grow: rehash at twice the size */
@@ -481,6 +476,7 @@ PetscErrorCode FacetsGridBuild(FacetsData *m)
             }
           }
     }
+    if (pass == 1) m->nglist = start;
   }
   PetscCall(PetscMalloc1((size_t)cap, &m->gcell));
   for (int s = 0; s < cap; s++) {
