@@ -177,7 +177,7 @@ def main():
         r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
         if r.returncode != 0:
             sys.exit("bench_eas_kernel: the driver does not compile:\n" + " ".join(cmd) + "\n" + r.stderr[-3000:])
-        r, wall, other = timed_run([exe, str(a.reps), str(a.seconds)], 1200)
+        r, wall, other, _ = timed_run([exe, str(a.reps), str(a.seconds)], 1200)
         if r.returncode != 0:
             sys.exit(f"bench_eas_kernel: driver failed ({r.returncode}):\n{r.stdout}\n{r.stderr}")
     finally:

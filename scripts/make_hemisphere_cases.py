@@ -6,7 +6,13 @@ The Coons cases build the tools as the method's paper did (scripts/coons_tools.p
 Coons patches and a plane, die fillet from 1 Coons patch); the _analytic cases use a sphere and a
 torus. Seed mesh: 301 hexahedra, one layer (the paper: 294); _refined: 3 layers, 12x the elements;
 _fine: 4 layers, 32x; _xfine: 4 layers, 68x. The refined meshes give the contact penalties per
-unit area (-contact_penalty_per_area), equal per unit area to the seed mesh's per-node values."""
+unit area (-contact_penalty_per_area), equal per unit area to the seed mesh's per-node values.
+The Coons tools are the files cases/tools/hemisphere_{punch,die}_{coons,coons3}.tool; they are
+written from scripts/coons_tools.py only when missing or with --coons-tools (its last printed digit
+follows the platform's libm: the committed files keep the values the stored references were made
+with).
+
+  python3 scripts/make_hemisphere_cases.py [--coons-tools]"""
 import os
 import subprocess
 import sys
@@ -87,8 +93,37 @@ EXTRA = {"_xfine": "# steps of up to 10 Newton iterations let the increment grow
 # Coons tools: the paper's construction with each punch patch split 3 x 3 (27 + 1 plane) and the
 # die fillet in 4 sectors, so that the tool surfaces lie within 0.02 mm of the sphere and torus;
 # the paper's own 3 + 1 and 1 patches (up to 0.52 mm off) are kept in hemisphere_*_coons3.opts
-coons = subprocess.run([sys.executable, os.path.join(here, "coons_tools.py"), "--split", "3", "--die-sectors", "4"], check=True, capture_output=True, text=True).stdout
-coons3 = subprocess.run([sys.executable, os.path.join(here, "coons_tools.py")], check=True, capture_output=True, text=True).stdout
+# The patches go to tool files under cases/tools/ (one per tool, the patch options without their
+# prefix -tool_<t>_, doc/tools.md "Tool files"); the cases name them with -tool_<t>_file.
+
+
+def tool_files(opts, tag, desc):
+    """Splits coons_tools.py's options: each tool's patch options into cases/tools/hemisphere_<t>_<tag>.tool,
+    the rest (names, motion) kept; returns the case's tool options."""
+    keep, files = [], {}
+    for line in opts.splitlines():
+        key, _, val = line.partition(" ")
+        t = key[len("-tool_"):].split("_", 1)
+        if key.startswith("-tool_") and len(t) == 2 and t[1].startswith("patch"):
+            files.setdefault(t[0], []).append(f"{t[1]} {val}")
+        else:
+            keep.append(line)
+    for t, lines in files.items():
+        rel = f"cases/tools/hemisphere_{t}_{tag}.tool"
+        if os.path.exists(os.path.join(here, "..", rel)) and "--coons-tools" not in sys.argv:
+            keep.append(f"-tool_{t}_file {rel}")
+            continue
+        with open(os.path.join(here, "..", rel), "w") as f:
+            f.write(f"# hemispherical punch benchmark, the {t}: {desc}.\n# Written by scripts/make_hemisphere_cases.py (scripts/coons_tools.py).\n" + "\n".join(lines) + "\n")
+        print("wrote " + rel)
+        keep.append(f"-tool_{t}_file {rel}")
+    return "\n".join(keep) + "\n"
+
+
+coons = tool_files(subprocess.run([sys.executable, os.path.join(here, "coons_tools.py"), "--split", "3", "--die-sectors", "4"], check=True, capture_output=True, text=True).stdout,
+                   "coons", "Coons patches as the method's paper built them, each punch patch split 3 x 3 (27 + 1 plane), the die fillet in 4 sectors")
+coons3 = tool_files(subprocess.run([sys.executable, os.path.join(here, "coons_tools.py")], check=True, capture_output=True, text=True).stdout,
+                    "coons3", "the paper's own Coons patches (punch 3 + 1 plane, die fillet 1)")
 for fr, mu, what in (("frictionless", 0, "frictionless"), ("friction", 0.15, "Coulomb friction mu = 0.15")):
     for tl, tools, tdesc in (("", coons, "punch from 3 Coons patches (each split 3 x 3) + 1 plane, die fillet from 4 Coons patches"),
                              ("_coons3", coons3, "the paper's tools: punch from 3 Coons patches + 1 plane, die fillet from 1 Coons patch"),

@@ -7,9 +7,12 @@ Writes under cases/tools/:
   hemisphere_punch_q<n>.msh   the same in quadrangles (three grids of n/2 x n/2), Gmsh 4.1
   hemisphere_die_s<n>.stl     the die fillet (torus, major 59.18, minor 6.35, centre (0,0,7.35),
   hemisphere_die_q<n>.msh     azimuth -10..100, tube angle 180..270) in triangles / quadrangles
+  hemisphere_tools_q<n>.inp   both tools in one Abaqus deck (n = 24, 48): the punch quadrangles as
+                              the S2 faces of C3D8 solids 2 mm thick (*SURFACE PUNCH_SURF), the die
+                              quadrangles as R3D4 elements of a *RIGID BODY (*SURFACE DIE_SURF, SPOS)
   hemisphere_punch.tool, hemisphere_die.tool   the analytic patches as tool files
   ball_s<n>.stl               the ball of cases/block_sphere.opts (R 3, centre (0,0,4), lower half)
-and the cases cases/hemisphere_frictionless_{toolfile,stl<n>,msh<n>}.opts from
+and the cases cases/hemisphere_frictionless_{toolfile,stl<n>,msh<n>,inp<n>}.opts from
 cases/hemisphere_frictionless_analytic.opts (the tool options replaced by -tool_<t>_file).
 
   python3 scripts/make_tool_meshes.py [--levels 12,24,48,96]
@@ -182,6 +185,35 @@ def write_msh(path, V, F, name="tool"):
         fp.write("$EndElements\n")
 
 
+def write_inp(path, punch, die, c, R, h=2.0):
+    """An Abaqus deck of both tools, as a CAD-to-FE export would give them: the punch a shell of
+    C3D8 solids of thickness h under its surface quads (nodes 1-4 on the inner face, 5-8 on the
+    outer one, so that the outer face is S2), its contact surface the *SURFACE PUNCH_SURF on S2; the
+    die R3D4 rigid elements, each wound so that its normal points to the sheet, in a *RIGID BODY
+    and the *SURFACE DIE_SURF on their SPOS side"""
+    (Vp, Fp), (Vd, Fd) = punch, die
+    c = np.array(c)
+    npn, ndn = len(Vp), len(Vd)
+    Vin = c + (Vp - c) * (R - h) / R
+    with open(path, "w") as fp:
+        fp.write("** hemispherical punch benchmark: punch (C3D8 shell, surface PUNCH_SURF) and die fillet\n"
+                 "** (R3D4, surface DIE_SURF). Written by scripts/make_tool_meshes.py.\n*HEADING\nrigid tools\n")
+        fp.write("*NODE, NSET=PUNCH_NODES\n")
+        fp.write("".join("%d, %.17g, %.17g, %.17g\n" % (k + 1, *p) for k, p in enumerate(Vp)))
+        fp.write("".join("%d, %.17g, %.17g, %.17g\n" % (npn + k + 1, *p) for k, p in enumerate(Vin)))
+        fp.write("*NODE, NSET=DIE_NODES\n")
+        fp.write("".join("%d, %.17g, %.17g, %.17g\n" % (2 * npn + k + 1, *p) for k, p in enumerate(Vd)))
+        ref = 2 * npn + ndn
+        fp.write("*NODE, NSET=REF\n%d, 0, 0, 0\n%d, 0, 0, 7.35\n" % (ref + 1, ref + 2))
+        fp.write("*ELEMENT, TYPE=C3D8, ELSET=PUNCH\n")
+        fp.write("".join("%d, %s, %s\n" % (e + 1, ", ".join(str(npn + v + 1) for v in f), ", ".join(str(v + 1) for v in f)) for e, f in enumerate(Fp)))
+        fp.write("*ELEMENT, TYPE=R3D4, ELSET=DIE\n")
+        fp.write("".join("%d, %s\n" % (len(Fp) + e + 1, ", ".join(str(2 * npn + v + 1) for v in f)) for e, f in enumerate(Fd)))
+        fp.write("*SOLID SECTION, ELSET=PUNCH, MATERIAL=STEEL\n*MATERIAL, NAME=STEEL\n*ELASTIC\n210000, 0.3\n")
+        fp.write("*RIGID BODY, ELSET=PUNCH, REF NODE=%d\n*RIGID BODY, ELSET=DIE, REF NODE=%d\n" % (ref + 1, ref + 2))
+        fp.write("*SURFACE, NAME=PUNCH_SURF, TYPE=ELEMENT\nPUNCH, S2\n*SURFACE, NAME=DIE_SURF, TYPE=ELEMENT\nDIE, SPOS\n")
+
+
 PUNCH = dict(c=(0.0, 0.0, -50.8), R=50.8)
 DIE = dict(c=(0.0, 0.0, 7.35), R=59.18, r=6.35)
 
@@ -206,7 +238,7 @@ patch0_range -10,100,180,270
 """
 
 
-def case(name, punch, die, comment):
+def case(name, punch, die, comment, groups=None):
     src = open(os.path.join(ROOT, "cases", "hemisphere_frictionless_analytic.opts")).read().splitlines()
     out = ["# " + comment, "# Written by scripts/make_tool_meshes.py from hemisphere_frictionless_analytic.opts."]
     for l in src:
@@ -220,6 +252,9 @@ def case(name, punch, die, comment):
         if l.startswith("-tool_punch_motion"):
             out.append("-tool_punch_file " + punch)
             out.append("-tool_die_file " + die)
+            if groups:
+                out.append("-tool_punch_file_group " + groups[0])
+                out.append("-tool_die_file_group " + groups[1])
     open(os.path.join(ROOT, "cases", name + ".opts"), "w").write("\n".join(out) + "\n")
 
 
@@ -243,6 +278,11 @@ def main():
         write_stl(os.path.join(d, "hemisphere_die_s%d.stl" % n), V, F, binary=n >= 48)
         V, F = torus(DIE["c"], DIE["R"], DIE["r"], -10.0, 100.0, 180.0, 270.0, nph, nps, quads=True)
         write_msh(os.path.join(d, "hemisphere_die_q%d.msh" % n), V, F, "die")
+        if n in (24, 48):
+            write_inp(os.path.join(d, "hemisphere_tools_q%d.inp" % n), sphere_sector_quads(PUNCH["c"], PUNCH["R"], -10.0, 100.0, n), (V, F), PUNCH["c"], PUNCH["R"])
+            case("hemisphere_frictionless_inp%d" % n, "cases/tools/hemisphere_tools_q%d.inp" % n, "cases/tools/hemisphere_tools_q%d.inp" % n,
+                 "The analytic benchmark with both tools from one Abaqus deck (%d rings on the punch: its C3D8 faces, the die's R3D4 elements), normals smoothed." % n,
+                 groups=("PUNCH_SURF", "DIE_SURF"))
         case("hemisphere_frictionless_stl%d" % n, "cases/tools/hemisphere_punch_s%d.stl" % n, "cases/tools/hemisphere_die_s%d.stl" % n,
              "The analytic benchmark with STL tools (%d rings on the punch), normals smoothed." % n)
         case("hemisphere_frictionless_msh%d" % n, "cases/tools/hemisphere_punch_q%d.msh" % n, "cases/tools/hemisphere_die_q%d.msh" % n,

@@ -2,7 +2,7 @@
 # Integration tests of tools from geometry files (doc/tools.md "Meshed surfaces"): a block pressed
 # and dragged by a ball from a binary STL (16 rings, Nagata smoothing) against the analytic ball,
 # 1 and 2 ranks (the same histories to 1e-8); the hemispherical punch benchmark with its tools from tool files (.tool: the same
-# patches, the same history) and from STL files (24 rings on the punch).
+# patches, the same history), from STL files (24 rings on the punch) and from an Abaqus deck.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -60,3 +60,27 @@ fa, fb = float(a["force_full"]), float(b["force_full"])
 e = abs(fb - fa) / abs(fa)
 print(("ok" if float(a["travel"]) == float(b["travel"]) == 40 and e < 5e-3 else "not ok") + " - hemisphere with STL tools (24 rings, smoothed): punch force at 40 mm %.4g vs %.4g analytic (%.3f %%)" % (fb, fa, 100 * e))
 PYEOF
+
+# 3. hemispherical punch with both tools from one Abaqus deck (24 rings: the punch's *SURFACE on
+#    the S2 faces of C3D8 solids, the die's on the SPOS side of R3D4 elements of a *RIGID BODY):
+#    the same quadrangles as the Gmsh file, the facets numbered otherwise: a node in a crease
+#    between two smoothed facets (normals up to 1e-2 rad apart) takes the smaller index, which may
+#    be the other side here, so the force components agree to 1e-6 of the largest force (2.3e-7
+#    measured; the punch force to 2e-10); 1 and 2 ranks to 1e-8. At every step.
+atrito 1 hemimsh -options_file cases/hemisphere_frictionless_msh24.opts -output_interval 0
+atrito 1 hemiinp -options_file cases/hemisphere_frictionless_inp24.opts -output_interval 0
+atrito 2 hemiinp2 -options_file cases/hemisphere_frictionless_inp24.opts -output_interval 0
+for pair in "hemimsh hemiinp 1e-6 .inp deck against the Gmsh file (np=1)" "hemiinp hemiinp2 1e-8 .inp deck, np=1 against np=2"; do
+  set -- $pair
+  a=$1 b=$2 tol=$3; shift 3
+  $PY - "$OUT/$a/contact.csv" "$OUT/$b/contact.csv" "$tol" "$*" <<'PYEOF'
+import csv, sys
+rows = lambda p: {(round(float(r["time"]), 12), r["tool"]): r for r in csv.DictReader(open(p))}
+a, b = rows(sys.argv[1]), rows(sys.argv[2])
+cols = ("force_full", "fx", "fy", "fz")
+scale = max(abs(float(r[c])) for r in a.values() for c in cols)
+d = max((abs(float(a[k][c]) - float(b[k][c])) / scale for k in a if k in b for c in cols), default=1.0)
+last = max(a)[0] == max(b)[0] == 1.0
+print(("ok" if set(a) == set(b) and last and d < float(sys.argv[3]) else "not ok") + " - hemisphere, tools from an Abaqus deck: %s: %d rows, forces within %.1e of the largest (tolerance %s)" % (sys.argv[4], len(b), d, sys.argv[3]))
+PYEOF
+done

@@ -1319,6 +1319,8 @@ static void test_facets_readers(void)
     {"-tool_names a -tool_a_file tests/data/tool_surface.inp", "Abaqus *SURFACE on a C3D8 face (S2, out of the solid)", 2, 4, {0.5, 0.5, 1.5}, 0.5, 1.0},
     {"-tool_names a -tool_a_file tests/data/tool_surface.inp -tool_a_file_group RIGID", "Abaqus R3D4 element set", 4, 6, {1.5, 0.5, 3.5}, 0.5, 1.0},
     {"-tool_names a -tool_a_file tests/data/tool_surface.inp -tool_a_file_group TOP -tool_a_file_format inp", "Abaqus named surface, format given", 2, 4, {0.2, 0.7, 0.9}, -0.1, 1.0},
+    {"-tool_names a -tool_a_file tests/data/tool_rigid.inp -tool_a_file_group UPPER", "Abaqus R3D4 surface, SPOS", 4, 6, {1.5, 0.5, 3.5}, 0.5, 1.0},
+    {"-tool_names a -tool_a_file tests/data/tool_rigid.inp -tool_a_file_group LOWER", "Abaqus R3D4 surface, SNEG", 4, 6, {1.5, 0.5, 3.5}, -0.5, -1.0},
   };
   for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
     T            = facets_tools(cases[k].opts, &n, &ierr);
@@ -1369,6 +1371,7 @@ static void test_facets_errors(void)
     {"-tool_names a -tool_a_file tests/data/bad_tool_nan.stl", "tool file tests/data/bad_tool_nan.stl: vertex"},
     {"-tool_names a -tool_a_file tests/data/bad_tool_type.msh", "tool file tests/data/bad_tool_type.msh: element 2: unknown element type 9"},
     {"-tool_names a -tool_a_file tests/data/bad_tool_type.inp", "tool file tests/data/bad_tool_type.inp: line 19: unknown element type S8R"},
+    {"-tool_names a -tool_a_file tests/data/bad_tool_face.inp", "tool file tests/data/bad_tool_face.inp: surface face SPOS of solid element 1 (S1 to S6)"},
     {"-tool_names a -tool_a_file tests/data/tool_quads.msh -tool_a_file_group nowhere", "no physical surface named 'nowhere'"},
     {"-tool_names a -tool_a_file tests/data/tool_quads.txt", "-tool_a_file tests/data/tool_quads.txt: unknown format 'txt'"},
     {"-tool_names a -tool_a_file tests/data/bad_tool_key.tool", "tool file tests/data/bad_tool_key.tool: key 'patch1_colour' is not an option of its patches"},

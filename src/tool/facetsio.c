@@ -540,9 +540,10 @@ static void ReadInp(Reader *r, FILE *fp, const char group[])
     } else if (mode == 4 && cursurf) {
       char name[256], face[16];
       if (sscanf(line, " %255[^, ] , %15s", name, face) != 2) continue;
-      const int fn = (toupper((unsigned char)face[0]) == 'S' || toupper((unsigned char)face[0]) == 'F') ? atoi(face + 1) : 0;
-      if (fn < 1 || fn > 6) {
-        Fail(r, "line %ld: face '%s' (S1 to S6)", ln, face);
+      /* S1..S6 (F1..F6); SPOS and SNEG (coded 7 and 8): the positive and negative side of a surface element */
+      const int fn = CaseEq(face, "SPOS") ? 7 : CaseEq(face, "SNEG") ? 8 : (toupper((unsigned char)face[0]) == 'S' || toupper((unsigned char)face[0]) == 'F') ? atoi(face + 1) : 0;
+      if (fn < 1 || fn > 8) {
+        Fail(r, "line %ld: face '%s' (S1 to S6, SPOS or SNEG)", ln, face);
         break;
       }
       char *t;
@@ -576,14 +577,18 @@ static void ReadInp(Reader *r, FILE *fp, const char group[])
         }
         const long *e = &Ea[10 * j];
         int         q[4];
+        if (e[1] == 8 && fn > 6) {
+          Fail(r, "surface face %s of solid element %ld (S1 to S6)", fn == 7 ? "SPOS" : "SNEG", id);
+          break;
+        }
         if (e[1] == 8) {
           for (int i = 0; i < 4; i++)
             if ((q[i] = IdGet(&nodes, e[2 + Hex8Face[fn - 1][i]])) < 0) Fail(r, "element %ld references undefined node %ld", id, e[2 + Hex8Face[fn - 1][i]]);
           if (!r->err[0]) AddPoly(r, 4, q, (int)id);
-        } else { /* a surface element: SPOS (S1 or S2 flips) */
+        } else { /* a surface element: as wound (SPOS, S1), or reversed (SNEG, S2) */
           for (int i = 0; i < e[1]; i++)
             if ((q[i] = IdGet(&nodes, e[2 + i])) < 0) Fail(r, "element %ld references undefined node %ld", id, e[2 + i]);
-          if (fn == 2) {
+          if (fn == 2 || fn == 8) {
             const int t = q[1];
             q[1]        = q[e[1] - 1];
             q[e[1] - 1] = t;

@@ -1,0 +1,35 @@
+# hemispherical punch benchmark, the punch: the paper's own Coons patches (punch 3 + 1 plane, die fillet 1).
+# Written by scripts/make_hemisphere_cases.py (scripts/coons_tools.py).
+patches 4
+patch0_type coons
+patch0_bottom_type arc
+patch0_bottom_points 0,0,0,35.9210244842766,0,-14.8789755157234,0,0,-50.8
+patch0_top_type arc
+patch0_top_points 0,35.9210244842766,-14.8789755157234,29.329393674833,29.329393674833,-21.470606325167,0,0,-50.8
+patch0_left_type arc
+patch0_left_points 0,0,0,0,35.9210244842766,-14.8789755157234,0,0,-50.8
+patch0_right_type arc
+patch0_right_points 35.9210244842766,0,-14.8789755157234,29.329393674833,29.329393674833,-21.470606325167,0,0,-50.8
+patch1_type coons
+patch1_bottom_type arc
+patch1_bottom_points 50.8,0,-50.8,35.9210244842766,35.9210244842766,-50.8,0,0,-50.8
+patch1_top_type arc
+patch1_top_points 35.9210244842766,0,-14.8789755157234,29.329393674833,29.329393674833,-21.470606325167,0,0,-50.8
+patch1_left_type arc
+patch1_left_points 50.8,0,-50.8,35.9210244842766,0,-14.8789755157234,0,0,-50.8
+patch1_right_type arc
+patch1_right_points 35.9210244842766,35.9210244842766,-50.8,29.329393674833,29.329393674833,-21.470606325167,0,0,-50.8
+patch2_type coons
+patch2_bottom_type arc
+patch2_bottom_points 0,50.8,-50.8,0,35.9210244842766,-14.8789755157234,0,0,-50.8
+patch2_top_type arc
+patch2_top_points 35.9210244842766,35.9210244842766,-50.8,29.329393674833,29.329393674833,-21.470606325167,0,0,-50.8
+patch2_left_type arc
+patch2_left_points 0,50.8,-50.8,35.9210244842766,35.9210244842766,-50.8,0,0,-50.8
+patch2_right_type arc
+patch2_right_points 0,35.9210244842766,-14.8789755157234,29.329393674833,29.329393674833,-21.470606325167,0,0,-50.8
+patch3_type plane
+patch3_origin 0,0,-50.8
+patch3_e1 1,0,0
+patch3_e2 0,1,0
+patch3_range 0,71.016,0,71.016
