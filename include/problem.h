@@ -67,6 +67,9 @@ typedef struct {
 
 /* -assembly_coo, -lu_ordering, -fault_nan_residual_at; the SNES and its options (-snes_*, -ksp_*, -pc_*) */
 PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb);
+/* registers the preconditioner type "amgsys" (src/solver/amg.c: BoomerAMG with each row told its
+   displacement component); ProblemSetFromOptions calls it */
+PetscErrorCode AMGSysRegister(void);
 /* on the mesh: history, vectors, the Jacobian (preallocated, COO pattern, near-null space) */
 PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact contact, Material mat, Element el);
 PetscErrorCode ProblemDestroy(Problem *pb);

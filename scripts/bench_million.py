@@ -209,10 +209,41 @@ hexahedra at most 40 Krylov iterations per Newton iteration (5 Newton iterations
 100 352 (1 rank) at most 68 (5 Newton iterations, 244 in the step, 423 s on the shared machine):
 the bound is still held to 25 600 hexahedra, not above.
 
-Not held: the quarter blank (symmetry planes, no 3 x 3 blocks). `cases/hemisphere_friction_fine.opts`
-(9 600 hexahedra) with the same options takes up to 178 Krylov iterations per Newton iteration in
-its first two steps of 1 mm (GAMG default: 382), `cases/hemisphere_friction_refined.opts` (3 612
-hexahedra, 3 layers) 141 and 154 in two steps of 2 mm; neither was run to 40 mm with it.
+Quarter blanks (symmetry planes) with PCHYPRE: not held. `cases/hemisphere_friction_fine.opts`
+(9 600 hexahedra) with `cases/solver_amg_sheet.opts` takes up to 143 and 136 Krylov iterations per
+Newton iteration in its first two steps (with the options before the aggressive coarsening 178;
+GAMG default: 382), `cases/hemisphere_friction_refined.opts` (3 612 hexahedra, 3 layers) 141 and
+154 in two steps of 2 mm with the earlier options. The cause: a symmetry plane removes one unknown
+of each of its nodes, the rows no longer come in threes, the matrix's block size is 1, and PCHYPRE
+then hands BoomerAMG a scalar problem, whose coarsening and interpolation mix the x, y and z
+components (the whole blank, clamped in all three components, keeps the block size 3).
+
+**`-pc_type amgsys`** (`src/solver/amg.c`, `cases/solver_amgsys.opts`): BoomerAMG called
+directly, each row told its component from the mesh's sections (`HYPRE_BoomerAMGSetDofFunc`, 3
+functions), the rest as the sheet file (HMIS, aggressive first level, ext+i, P_max 4, strength
+0.7, BiCGStab to 1e-3). The same quarter blank of 9 600 hexahedra, one rank, 2026-11-24 (machine
+shared with one other run: times indicative), the most Krylov iterations in a Newton iteration of
+the first two steps, their Krylov iterations and time:
+
+| preconditioner | step 1 | step 2 | Krylov its | s |
+|---|---|---|---|---|
+| PCHYPRE (`solver_amg_sheet.opts`) | 143 | 136 | 528 + 569 | 54.0 |
+| amgsys, 2 sweeps | 38 | 52 | 159 + 173 | 18.4 |
+| amgsys, 3 sweeps (`solver_amgsys.opts`) | 35 | 35 | 151 + 147 | 25.6 |
+| amgsys, 2 sweeps, no aggressive coarsening | 36 | 37 | 157 + 142 | 21.5 |
+| amgsys, 2 sweeps, strength 0.5 | 51 | 43 | 200 + 158 | 21.4 |
+| amgsys, 2 sweeps, l1 Gauss-Seidel (relax 8) | 55 | 39 | 191 + 165 | 21.3 |
+| amgsys, 2 sweeps, GMRES(100) instead of BiCGStab | 61 | 54 | 240 + 214 | 14.7 |
+| amgsys with hypre's nodal coarsening | crashed in hypre (it needs all three unknowns at every node): not offered | | | |
+
+To 40 mm with `cases/solver_amgsys.opts`: 32 steps, 210 Newton iterations, 2 cuts, at most 35
+Krylov iterations in any Newton iteration (per step: 35, 35, 24, 22, 19, 18, 23, 20, 24, 22, 26,
+26, 24, 28, 25, 27, 27, 33, 24, 26, 25, 22, 20, 20, 20, 20, 20, 22, 21, 23, 21, 17), 415 s; LU
+(MUMPS) on the same case: 32 steps, 201 Newton iterations, 2 cuts (the same two), 137 s. Punch
+force at 40 mm 79.18767 kN both, within 3e-10 (at 10, 20, 30 mm within 2.5e-9). On the whole
+blank (block size 3) amgsys and PCHYPRE do the same (9 600 hexahedra, first two steps: 35 and 36
+against 35 and 30). `tests/test_solver.sh` runs a small quarter blank at 1 and 2 ranks against LU
+and checks the bound and that amgsys needs fewer iterations than PCHYPRE.
 """
 
 

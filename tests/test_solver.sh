@@ -106,3 +106,23 @@ for np in 1 2; do
     not_ok "Krylov iterations: $n step lines, most $most (np=$np)"
 done
 ! grep -q "krylov" "$OUT/disk_lu.log" && ok "LU runs: no Krylov count on the progress line" || not_ok "LU run prints a Krylov count"
+
+# 10. the quarter blank (symmetry planes: rows no longer in threes, block size 1):
+#     cases/solver_amgsys.opts (-pc_type amgsys, src/solver/amg.c: BoomerAMG told each row's
+#     component) at 1 and 2 ranks against LU, at
+#     most 50 Krylov iterations per Newton iteration, fewer than PCHYPRE's (which mixes the
+#     components there); the Jacobian in hypre's format and in AIJ (converted at each setup)
+QUARTER="-options_file cases/hemisphere_friction_fine.opts -blank_core_cells 4 -blank_radial_cells 10 -blank_layers 2 -tool_punch_motion 0,0,3 -load_steps 3 -load_dt_max 0.34 -output_interval 0"
+most_of() { grep -o "krylov [0-9]* (most [0-9]*)" "$1" | awk '{gsub(/\)/,"",$4); if ($4 > m) m = $4} END {print m + 0}'; }
+atrito 1 quarter_lu $QUARTER
+for np in 1 2; do
+  atrito $np quarter_sys$np $QUARTER -options_file cases/solver_amgsys.opts &&
+    compare "$OUT/quarter_lu/history.csv" "$OUT/quarter_sys$np/history.csv" 6 "quarter blank with friction: BiCGStab + amgsys (np=$np) against LU"
+done
+atrito 1 quarter_hypre $QUARTER -options_file cases/solver_amg_sheet.opts
+atrito 1 quarter_aij $QUARTER -options_file cases/solver_amgsys.opts -assembly_mat_type aij
+compare "$OUT/quarter_lu/history.csv" "$OUT/quarter_aij/history.csv" 6 "quarter blank: amgsys on an AIJ Jacobian (converted) against LU"
+m1=$(most_of "$OUT/quarter_sys1.log"); m2=$(most_of "$OUT/quarter_sys2.log"); mh=$(most_of "$OUT/quarter_hypre.log")
+[ "$m1" -ge 1 ] && [ "$m1" -le 50 ] && [ "$m2" -ge 1 ] && [ "$m2" -le 50 ] && [ "$m1" -lt "$mh" ] &&
+  ok "quarter blank: amgsys at most $m1 (np=1) and $m2 (np=2) Krylov iterations per Newton iteration, PCHYPRE $mh" ||
+  not_ok "quarter blank: amgsys most $m1 (np=1), $m2 (np=2), PCHYPRE $mh"

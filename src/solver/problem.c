@@ -360,6 +360,7 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
 
   /* Newton with the backtracking line search, LU by MUMPS; every -snes_, -ksp_, -pc_ option
      applies on top */
+  PetscCall(AMGSysRegister());
   PetscCall(SNESCreate(comm, &pb->snes));
   PetscCall(SNESSetTolerances(pb->snes, 1e-10, 1e-9, 1e-12, 25, -1));
   PetscCall(SNESGetKSP(pb->snes, &ksp));
@@ -537,6 +538,12 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   PetscCall(SNESSetApplicationContext(pb->snes, pb));
   PetscCall(SNESGetKSP(pb->snes, &ksp));
   PetscCall(KSPGetPC(ksp, &pc));
+  { /* -pc_type amgsys reads each row's displacement component from the mesh's sections */
+    PetscBool isamg;
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, "amgsys", &isamg));
+    PetscCheck(!isamg || !pb->ntu, pb->comm, PETSC_ERR_SUP, "-pc_type amgsys: the Jacobian has rows that are not the mesh's displacement unknowns (force-driven tools add unknowns of their own: use -pc_type hypre there)");
+    if (isamg) PetscCall(PCSetDM(pc, m->dm));
+  }
   if (pb->lu_ordering == LU_ORDERING_ND) {
     /* LU by MUMPS, unless the options chose another preconditioner or package: MUMPS called
        directly with a METIS nested-dissection ordering (fewer flops than PORD, and balanced
