@@ -244,6 +244,27 @@ force at 40 mm 79.18767 kN both, within 3e-10 (at 10, 20, 30 mm within 2.5e-9). 
 blank (block size 3) amgsys and PCHYPRE do the same (9 600 hexahedra, first two steps: 35 and 36
 against 35 and 30). `tests/test_solver.sh` runs a small quarter blank at 1 and 2 ranks against LU
 and checks the bound and that amgsys needs fewer iterations than PCHYPRE.
+
+On the whole blank, amgsys with `cases/solver_amgsys.opts` also needs fewer iterations than
+PCHYPRE as the mesh grows, although PCHYPRE has the block size 3 there (it differs in hypre
+settings that PETSc chooses, not traced), in one step of 1 mm (peak resident size of the whole
+step, summed over the ranks; the machine shared with one other run):
+
+| hexahedra, ranks | PCHYPRE, 2 sweeps (`solver_amg_sheet.opts`) | PCHYPRE, 3 sweeps | amgsys, 3 sweeps (`solver_amgsys.opts`) | amgsys, 4 sweeps |
+|---|---|---|---|---|
+| 100 352, 1 | most 68, 244 in the step, 423 s | most 89, 203, 283 s, 1.032e9 B | **most 49**, 200, 236 s, 1.032e9 B (0.96 GiB per 100 000 on one rank) | – |
+| 250 512, 2 | most 56, 5 Newton its at 169 s each | – | most 54, 183 in the step, 5 Newton its, 304 s (61 s per Newton iteration), 2.065e9 B (0.77 GiB per 100 000) | most 58, 229, 6 Newton its, 463 s |
+
+| 1 010 224, 2 | – (memory-only run: 23 in its first Newton iteration) | – | most 78: 59 in the predictor's solve, then 31, 51, 49, 45, 46, 37, 44, 78, 66 in the 9 Newton iterations; 2 888 s for the step (about 290 s per Newton iteration); peak 8.188e9 B (**0.755 GiB per 100 000**) | – |
+
+The bound of 50 now holds to 100 352 hexahedra on the whole blank and to 9 600 on the quarter
+blank through 40 mm, not at 250 512 (54) nor at 1 010 224 (78 at most, in the last two Newton
+iterations, whose linear solves start from a residual 1e-7 of the first); a step at 250 512 takes
+a third of the time it took. The step at 1 010 224 hexahedra is the first whole step at that size:
+9 Newton iterations (|R| 1365, 312, 112, 107, 84, 28, 2.6, 0.022, 6.6e-6, 2.8e-9: four slow
+iterations before the quadratic end, as contact spreads over 505 938 slave nodes), no cut, 48
+minutes on the 2 shared cores; its peak resident size, sampled every 15 s and from
+`-memory_view`, is that of the memory-only run (7.63 against 7.37 GiB).
 """
 
 
