@@ -255,6 +255,11 @@ step, summed over the ranks; the machine shared with one other run):
 | 100 352, 1 | most 68, 244 in the step, 423 s | most 89, 203, 283 s, 1.032e9 B | **most 49**, 200, 236 s, 1.032e9 B (0.96 GiB per 100 000 on one rank) | – |
 | 250 512, 2 | most 56, 5 Newton its at 169 s each | – | most 54, 183 in the step, 5 Newton its, 304 s (61 s per Newton iteration), 2.065e9 B (0.77 GiB per 100 000) | most 58, 229, 6 Newton its, 463 s |
 
+At 250 512 hexahedra other amgsys settings did not reach 50 either (3 sweeps; most in a Newton
+iteration, Krylov iterations in the step, Newton iterations, s): at most 6 entries per
+interpolation row 55, 224, 6, 359 s; strength threshold 0.8: 57, 206, 5, 336 s (peak 2.06e9 B
+each, as with the file's settings).
+
 | 1 010 224, 2 | – (memory-only run: 23 in its first Newton iteration) | – | most 78: 59 in the predictor's solve, then 31, 51, 49, 45, 46, 37, 44, 78, 66 in the 9 Newton iterations; 2 888 s for the step (about 290 s per Newton iteration); peak 8.188e9 B (**0.755 GiB per 100 000**) | – |
 
 The bound of 50 now holds to 100 352 hexahedra on the whole blank and to 9 600 on the quarter
