@@ -136,7 +136,7 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
   PetscBool           ishypre;
   hypre_ParCSRMatrix *pA;
   HYPRE_Int          *dof = NULL;
-  PetscInt            rend, lerr = 0, gerr;
+  PetscInt            rstart, rend, lerr = 0, gerr;
 
   PetscFunctionBeginUser;
   PetscCall(PCGetOperators(pc, NULL, &A));
@@ -147,13 +147,14 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
     A = a->hmat;
   }
   PetscCall(MatHYPREGetParCSR(A, &pA));
-  PetscCall(MatGetOwnershipRange(A, &a->rstart, &rend));
+  PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
   if (a->amg) HYPRE_BoomerAMGDestroy(a->amg);
   a->amg = NULL;
-  if (!a->ib || a->n != rend - a->rstart) {
+  if (!a->ib || a->rstart != rstart || a->n != rend - rstart) { /* hypre's vectors of this row range */
     if (a->ib) HYPRE_IJVectorDestroy(a->ib);
     if (a->ix) HYPRE_IJVectorDestroy(a->ix);
-    a->n = rend - a->rstart;
+    a->rstart = rstart;
+    a->n      = rend - rstart;
     HYPRE_IJVector *v[2] = {&a->ib, &a->ix};
     HYPRE_ParVector *pv[2] = {&a->pb, &a->px};
     for (int k = 0; k < 2; k++) {
