@@ -31,6 +31,10 @@ typedef struct {
                               0 no, 1 on frictionless tools, 2 on every tool (-newton_keep_contact) */
   PetscBool keep_contact_set; /* given by the option (else: 1, and 2 with -contact_augmented) */
   PetscReal r_true0;       /* |R| at the start of the solve with the true contact law (< 0: none) */
+  PetscReal ksp_target;    /* -newton_ksp_target: a Newton iteration's linear solve stops at this
+                              fraction of the Newton tolerance (0: at -ksp_rtol only)           */
+  PetscReal ksp_rtol0;     /* -ksp_rtol as set, restored after every Newton solve             */
+  PetscReal newton_tol;    /* the Newton solve's tolerance max(atol, rtol |R_0|)               */
   /* the Newton monitor */
   Problem  *pb;
   PetscBool stalled;

@@ -246,30 +246,64 @@ against 35 and 30). `tests/test_solver.sh` runs a small quarter blank at 1 and 2
 and checks the bound and that amgsys needs fewer iterations than PCHYPRE.
 
 On the whole blank, amgsys with `cases/solver_amgsys.opts` also needs fewer iterations than
-PCHYPRE as the mesh grows, although PCHYPRE has the block size 3 there (it differs in hypre
-settings that PETSc chooses, not traced), in one step of 1 mm (peak resident size of the whole
-step, summed over the ranks; the machine shared with one other run):
+PCHYPRE as the mesh grows, although PCHYPRE has the block size 3 there, in one step of 1 mm
+(peak resident size of the whole step, summed over the ranks; the machine shared with one other
+run). What differs is the order of the smoothing: PCHYPRE relaxes in CF order by default (the
+coarse points first on the way down, the fine points first on the way up), amgsys in hypre's
+natural order; with `-pc_hypre_boomeramg_grid_sweeps_all 3 -pc_hypre_boomeramg_no_CF` PCHYPRE
+takes amgsys's Krylov iterations one for one (25 600 hexahedra, 1 rank: 25, 19, 30, 32, 35, 64
+both, the same Newton residuals and peak memory). `-pc_amgsys_relax_order CF` offers PCHYPRE's
+order.
 
 | hexahedra, ranks | PCHYPRE, 2 sweeps (`solver_amg_sheet.opts`) | PCHYPRE, 3 sweeps | amgsys, 3 sweeps (`solver_amgsys.opts`) | amgsys, 4 sweeps |
 |---|---|---|---|---|
 | 100 352, 1 | most 68, 244 in the step, 423 s | most 89, 203, 283 s, 1.032e9 B | **most 49**, 200, 236 s, 1.032e9 B (0.96 GiB per 100 000 on one rank) | – |
 | 250 512, 2 | most 56, 5 Newton its at 169 s each | – | most 54, 183 in the step, 5 Newton its, 304 s (61 s per Newton iteration), 2.065e9 B (0.77 GiB per 100 000) | most 58, 229, 6 Newton its, 463 s |
+| 1 010 224, 2 | – (memory-only run: 23 in its first Newton iteration) | – | most 78: 59 in the predictor's solve, then 31, 51, 49, 45, 46, 37, 44, 78, 66 in the 9 Newton iterations; 2 888 s for the step (about 290 s per Newton iteration); peak 8.188e9 B (**0.755 GiB per 100 000**) | – |
 
 At 250 512 hexahedra other amgsys settings did not reach 50 either (3 sweeps; most in a Newton
 iteration, Krylov iterations in the step, Newton iterations, s): at most 6 entries per
 interpolation row 55, 224, 6, 359 s; strength threshold 0.8: 57, 206, 5, 336 s (peak 2.06e9 B
-each, as with the file's settings).
+each, as with the file's settings); two-stage extended+i interpolation on the aggressive level (`-pc_amgsys_agg_interp_type 2s-ext+i-mm`; at 25 600 hexahedra most 38 against 35) was stopped after 5 minutes still in the predictor's linear solve (about 50 s with multipass).
 
-| 1 010 224, 2 | – (memory-only run: 23 in its first Newton iteration) | – | most 78: 59 in the predictor's solve, then 31, 51, 49, 45, 46, 37, 44, 78, 66 in the 9 Newton iterations; 2 888 s for the step (about 290 s per Newton iteration); peak 8.188e9 B (**0.755 GiB per 100 000**) | – |
-
-The bound of 50 now holds to 100 352 hexahedra on the whole blank and to 9 600 on the quarter
-blank through 40 mm, not at 250 512 (54) nor at 1 010 224 (78 at most, in the last two Newton
-iterations, whose linear solves start from a residual 1e-7 of the first); a step at 250 512 takes
-a third of the time it took. The step at 1 010 224 hexahedra is the first whole step at that size:
+The 1 010 224-hexahedra row and the ones above were run before `-newton_ksp_target` (below); the
+bound of 50 holds to 100 352 hexahedra on the whole blank (25 600: 35 with the option, 64
+without) and to 9 600 on the quarter blank through 40 mm, not at 250 512 (54) nor at 1 010 224
+(78 at most, in the last two Newton iterations, whose linear solves start from a residual 1e-7
+of the first); a step at 250 512 takes a third of the time it took. The step at 1 010 224 hexahedra is the first whole step at that size:
 9 Newton iterations (|R| 1365, 312, 112, 107, 84, 28, 2.6, 0.022, 6.6e-6, 2.8e-9: four slow
 iterations before the quadratic end, as contact spreads over 505 938 slave nodes), no cut, 48
 minutes on the 2 shared cores; its peak resident size, sampled every 15 s and from
 `-memory_view`, is that of the memory-only run (7.63 against 7.37 GiB).
+
+**The last Newton iteration's linear solve: `-newton_ksp_target`.** The most Krylov iterations
+of a step often fell in its last Newton iteration, which had the least to do: on the whole blank
+of 25 600 hexahedra (1 rank, first step of 1 mm, `cases/solver_amgsys.opts` as it was) the solves
+took 25 (the predictor's), 19, 30, 32, 35 and 64, the last from |R| = 1.08e-5 with the Newton
+tolerance at 5.1e-6 (1e-9 of |R_0| = 5125): it reduced |R| by the full 1e-3 where a factor of 2
+was enough (to 5.9e-9). `-newton_ksp_target η` (src/process/stepper.c) gives the linear solve of
+Newton iteration k the relative tolerance max(`-ksp_rtol`, η tol / |R_k|), so only an iteration
+that starts below η / `-ksp_rtol` times the tolerance (50 times for η = 0.05 and 1e-3) is
+affected; both solver files set η = 0.05. The residual
+BiCGStab measures (preconditioned) fell 2.5 to 5 times further than |R| did, hence η well below
+1:
+
+| η | Krylov per solve, 25 600 hexahedra | in the step (most) | Newton its | final \|R\| / tol | step s |
+|---|---|---|---|---|---|
+| 0 (before) | 25, 19, 30, 32, 35, 64 | 180 (64) | 5 | 1e-3 | 49.0 |
+| 0.02 | 25, 19, 30, 32, 35, 52 | 168 (52) | 5 | 9e-3 | 45.2 |
+| 0.05 (the files) | 25, 19, 30, 32, 35, 22 | 138 (35) | 5 | 0.12 | 39.0 |
+| 0.1 | 25, 19, 30, 32, 35, 18 | 134 (35) | 5 | 0.54 | 37.9 |
+| 0.3 | 25, 19, 30, 32, 35, 17, 11 | 144 (35) | 6 (the fifth stopped above tol) | 0.24 | 40.4 |
+
+At 100 352 hexahedra (1 rank, η = 0.05): 37, 24, 46, 45, 49, 21 (the last from 5.4e-6, tol 2.5e-6;
+before 200 in the step), 185 in the step, 222 s, most 49 as before, in the fourth Newton
+iteration (from 8.1e-3). At 250 512 (2 ranks) nothing changes: 41, 31, 25, 31, 42, 54, the last
+from 8.8e-3, where a reduction by 1e-3 is still needed to reach the tolerance (1.5e-6). At
+1 010 224 the last solve (66) started from 6.6e-6 with the tolerance near 1.4e-6 and would be
+shortened, not the 78 before it (from 0.022); not run again. So the bound of 50 is limited by the
+solves of the iterations before the last, from residuals 1e-5 to 1e-6 of the first, which sit at
+the contact zone's edge.
 """
 
 

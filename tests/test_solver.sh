@@ -126,3 +126,33 @@ m1=$(most_of "$OUT/quarter_sys1.log"); m2=$(most_of "$OUT/quarter_sys2.log"); mh
 [ "$m1" -ge 1 ] && [ "$m1" -le 50 ] && [ "$m2" -ge 1 ] && [ "$m2" -le 50 ] && [ "$m1" -lt "$mh" ] &&
   ok "quarter blank: amgsys at most $m1 (np=1) and $m2 (np=2) Krylov iterations per Newton iteration, PCHYPRE $mh" ||
   not_ok "quarter blank: amgsys most $m1 (np=1), $m2 (np=2), PCHYPRE $mh"
+
+# 11. -newton_ksp_target (0.05 in cases/solver_amg_sheet.opts and solver_amgsys.opts): a Newton
+#     iteration's linear solve stops at that fraction of the Newton tolerance when it gets there
+#     before -ksp_rtol, so the last iteration does not reduce an |R| already near the tolerance by
+#     another 1e-3. The whole blank of section 9 against the same run with the option off: fewer
+#     Krylov iterations in all (the first step's last solve), no more Newton iterations, and both
+#     within the tolerance of LU's history
+sum_of() { grep -o "krylov [0-9]* (most" "$1" | awk '{s += $2} END {print s + 0}'; }
+newton_of() { sed -n 's/^done: .* steps, \([0-9]*\) Newton iterations.*/\1/p' "$1"; }
+atrito 1 disk_target0 $DISK -options_file cases/solver_amg_sheet.opts -newton_ksp_target 0 &&
+  compare "$OUT/disk_lu/history.csv" "$OUT/disk_target0/history.csv" 6 "whole blank: BiCGStab+BoomerAMG with -newton_ksp_target 0 against LU"
+k1=$(sum_of "$OUT/disk_amg1.log"); k0=$(sum_of "$OUT/disk_target0.log")
+n1=$(newton_of "$OUT/disk_amg1.log"); n0=$(newton_of "$OUT/disk_target0.log")
+[ -n "$n1" ] && [ -n "$n0" ] && [ "$k1" -ge 1 ] && [ "$k1" -lt "$k0" ] && [ "$n1" -le "$n0" ] &&
+  ok "-newton_ksp_target 0.05: $k1 Krylov iterations in $n1 Newton iterations, against $k0 in $n0 with the option off" ||
+  not_ok "-newton_ksp_target 0.05: $k1 Krylov iterations in ${n1:-?} Newton iterations, off: $k0 in ${n0:-?}"
+
+# 12. amgsys and PCHYPRE on the whole blank (block size 3, every node with its three unknowns)
+#     differ in the smoothing order only: with three sweeps, amgsys in CF order takes PCHYPRE's
+#     Krylov iterations step for step, and PCHYPRE in natural order (-pc_hypre_boomeramg_no_CF)
+#     amgsys's (src/solver/amg.c)
+kry_of() { grep -o "krylov [0-9]* (most [0-9]*)" "$1" | tr '\n' ' '; }
+atrito 1 disk_sys_cf $DISK -options_file cases/solver_amgsys.opts -pc_amgsys_relax_order CF
+atrito 1 disk_hyp3 $DISK -options_file cases/solver_amg_sheet.opts -pc_hypre_boomeramg_grid_sweeps_all 3
+atrito 1 disk_sys $DISK -options_file cases/solver_amgsys.opts
+atrito 1 disk_hyp3_nocf $DISK -options_file cases/solver_amg_sheet.opts -pc_hypre_boomeramg_grid_sweeps_all 3 -pc_hypre_boomeramg_no_CF
+a=$(kry_of "$OUT/disk_sys_cf.log"); b=$(kry_of "$OUT/disk_hyp3.log"); c=$(kry_of "$OUT/disk_sys.log"); d=$(kry_of "$OUT/disk_hyp3_nocf.log")
+[ -n "$a" ] && [ "$a" = "$b" ] && [ -n "$c" ] && [ "$c" = "$d" ] && [ "$a" != "$c" ] &&
+  ok "whole blank: amgsys -pc_amgsys_relax_order CF = PCHYPRE ($a), natural = PCHYPRE -pc_hypre_boomeramg_no_CF ($c)" ||
+  not_ok "whole blank: amgsys CF '$a' against PCHYPRE '$b'; natural '$c' against PCHYPRE no_CF '$d'"

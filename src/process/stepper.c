@@ -18,6 +18,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->grow_its      = 5;
   st->max_cuts      = 10;
   st->stall_its     = 0;
+  st->ksp_target    = 0;
   st->stall_factor  = 0.9;
   st->max_steps     = 100000;
   st->predictor     = PREDICTOR_AUTO;
@@ -58,6 +59,8 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     PetscCheck(st->max_steps >= 1, comm, PETSC_ERR_USER_INPUT, "-load_max_steps %" PetscInt_FMT " must be >= 1", st->max_steps);
     PetscCheck(st->stall_its >= 0 && st->stall_its < 256, comm, PETSC_ERR_USER_INPUT, "-newton_stall_its %" PetscInt_FMT " must lie in [0, 255]", st->stall_its);
     PetscCheck(st->stall_factor > 0 && st->stall_factor <= 1, comm, PETSC_ERR_USER_INPUT, "-newton_stall_factor %g must lie in (0, 1]", (double)st->stall_factor);
+    PetscCall(PetscOptionsReal("-newton_ksp_target", "Iterative linear solvers: a Newton iteration's linear solve stops once its relative residual is below the larger of -ksp_rtol and this fraction of the Newton tolerance over |R| (the last iteration need not solve beyond the tolerance; 0: -ksp_rtol only)", NULL, st->ksp_target, &st->ksp_target, NULL));
+    PetscCheck(st->ksp_target >= 0 && st->ksp_target < 1, comm, PETSC_ERR_USER_INPUT, "-newton_ksp_target %g must lie in [0, 1)", (double)st->ksp_target);
 
   {
     const char *kc[] = {"none", "frictionless", "all", "KeepContact", "KEEP_", NULL};
@@ -258,6 +261,26 @@ static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, P
     pb->kry_max = PetscMax(pb->kry_max, kits);
   }
   if (it < 256) pb->fnorm_hist[it] = fnorm;
+  if (pb->kry_on && pb->ksp_target > 0) {
+    /* inexact Newton's tail: the next linear solve need only bring |R| well below the Newton
+       tolerance tol, not a further factor -ksp_rtol below |R| (at the last iteration |R| is often
+       within a few times tol, and reducing it by 1e-3 cost the most Krylov iterations of the
+       step: the residual left there sits at the contact zone's edge). Its relative residual
+       rtol_k = max(-ksp_rtol, eta tol / |R_k|); the quadratic term's part of the next residual
+       is already below tol when Newton is that close */
+    KSP       ksp;
+    PetscReal rt, ka, kd, atol, rtol, stol;
+    PetscInt  km, maxit, maxf;
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetTolerances(ksp, &rt, &ka, &kd, &km));
+    if (it == 0) {
+      PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, &maxf));
+      pb->newton_tol = PetscMax(atol, rtol * fnorm);
+    }
+    rt = pb->ksp_rtol0;
+    if (*reason == SNES_CONVERGED_ITERATING && fnorm > 0) rt = PetscMax(rt, PetscMin(0.5, pb->ksp_target * pb->newton_tol / fnorm));
+    PetscCall(KSPSetTolerances(ksp, rt, ka, kd, km));
+  }
   if (*reason == SNES_CONVERGED_ITERATING && w > 0 && it >= w && it < 256 && !(fnorm < pb->stall_factor * pb->fnorm_hist[it - w])) {
     *reason         = SNES_DIVERGED_DTOL;
     pb->stalled     = PETSC_TRUE;
@@ -370,6 +393,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     PetscBool preonly;
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
     st->kry_on = preonly ? PETSC_FALSE : PETSC_TRUE;
+    PetscCall(KSPGetTolerances(ksp, &st->ksp_rtol0, NULL, NULL, NULL));
   }
   if (st->bcs->nswitch) { /* conditions that stages switch: their rows (bc.h) */
     PetscCall(SNESSetFunction(snes, NULL, StepperFormFunction, st));
@@ -532,6 +556,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         if (aug) PetscCall(SNESSetForceIteration(snes, st->aug_loops > 0 ? PETSC_TRUE : PETSC_FALSE));
         PetscCall(SNESSolve(snes, NULL, pb->U));
         if (contact) PetscCall(ContactKeepCommitted(pb->contact, 0)); /* (a solve that ended before its first line search) */
+        if (st->kry_on && st->ksp_target > 0) PetscCall(KSPSetTolerances(ksp, st->ksp_rtol0, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT)); /* (-newton_ksp_target) */
         PetscCall(SNESGetConvergedReason(snes, &reason));
         PetscCall(SNESGetIterationNumber(snes, &its1));
         if (st->aug_loops == 0) r0 = st->r_true0 >= 0 ? st->r_true0 : rhist[0];

@@ -13,12 +13,14 @@
    40 mm. Here the component of every row is read from the mesh's sections (the constrained
    components skipped, as the global numbering skips them) and handed to BoomerAMG
    (HYPRE_BoomerAMGSetDofFunc), whatever the constraints. On the whole blank it also needs fewer
-   iterations than PCHYPRE as the mesh grows (100 352 hexahedra: 49 against 68), from hypre
-   settings PCHYPRE chooses otherwise (not traced).
+   iterations than PCHYPRE as the mesh grows (100 352 hexahedra: 49 against 68): PCHYPRE relaxes
+   in CF order by default, this type in hypre's natural order (-pc_amgsys_relax_order; with
+   -pc_hypre_boomeramg_no_CF PCHYPRE's iterations on the whole blank are this type's, one for one).
 
    Options (prefix: the preconditioner's, e.g. none or -ksp's): -pc_amgsys_strong_threshold,
    -pc_amgsys_coarsen_type, -pc_amgsys_interp_type, -pc_amgsys_P_max, -pc_amgsys_agg_nl,
-   -pc_amgsys_sweeps, -pc_amgsys_relax_type; defaults those of
+   -pc_amgsys_agg_interp_type, -pc_amgsys_sweeps, -pc_amgsys_relax_type, -pc_amgsys_relax_order;
+   defaults those of
    cases/solver_amg_sheet.opts. The Jacobian is used in hypre's format as it is
    (-assembly_mat_type hypre), any other type is converted at each setup. One V-cycle per
    application. hypre's nodal coarsening (SetNodal) is not offered: it needs every node to have all
@@ -46,12 +48,17 @@ typedef struct {
   PetscInt        rstart, n;  /* the local rows */
   PetscReal       theta;      /* strength threshold */
   PetscInt        coarsen, interp, pmax, aggnl, sweeps, relax;
+  PetscInt        order;      /* relaxation order: 0 natural, 1 C points then F points (CF) */
+  PetscInt        agginterp;  /* interpolation on the aggressive levels (hypre's numbering)  */
 } PC_AMGSys;
 
 static const char *const Coarsen[] = {"CLJP", "Ruge-Stueben", "modifiedRuge-Stueben", "Falgout", "PMIS", "HMIS", NULL};
 static const int         CoarsenId[] = {0, 1, 3, 6, 8, 10};
 static const char *const Interp[]    = {"classical", "direct", "multipass", "ext+i", "ext", "ext+i-mm", NULL};
 static const int         InterpId[]  = {0, 3, 4, 6, 14, 17};
+static const char *const AggInterp[] = {"multipass", "2s-ext+i", "2s-std", "2s-ext", "2s-ext-mm", "2s-ext+i-mm", "2s-ext+e-mm", NULL};
+static const int         AggInterpId[] = {4, 1, 2, 3, 5, 6, 7};
+static const char *const Order[]     = {"natural", "CF", NULL};
 
 /* hypre's error flag: any error but a convergence flag is fatal (one V-cycle "does not converge") */
 static PetscErrorCode HypreCheck(MPI_Comm comm, HYPRE_Int ierr, const char *what)
@@ -187,6 +194,8 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
   HYPRE_BoomerAMGSetInterpType(a->amg, (HYPRE_Int)a->interp);
   HYPRE_BoomerAMGSetPMaxElmts(a->amg, (HYPRE_Int)a->pmax);
   HYPRE_BoomerAMGSetAggNumLevels(a->amg, (HYPRE_Int)a->aggnl);
+  HYPRE_BoomerAMGSetAggInterpType(a->amg, (HYPRE_Int)a->agginterp);
+  HYPRE_BoomerAMGSetRelaxOrder(a->amg, (HYPRE_Int)a->order);
   HYPRE_BoomerAMGSetNumSweeps(a->amg, (HYPRE_Int)a->sweeps);
   HYPRE_BoomerAMGSetCycleNumSweeps(a->amg, 1, 3); /* the coarsest level: one direct solve */
   HYPRE_BoomerAMGSetRelaxType(a->amg, (HYPRE_Int)a->relax);
@@ -226,19 +235,23 @@ static PetscErrorCode PCApply_AMGSys(PC pc, Vec x, Vec y)
 static PetscErrorCode PCSetFromOptions_AMGSys(PC pc, PetscOptionItems *PetscOptionsObject)
 {
   PC_AMGSys *a = (PC_AMGSys *)pc->data;
-  PetscInt   ci = 5, ii = 3;
+  PetscInt   ci = 5, ii = 3, ai = 0, oi = a->order;
 
   PetscFunctionBeginUser;
   for (int k = 0; Coarsen[k]; k++)
     if (CoarsenId[k] == a->coarsen) ci = k;
   for (int k = 0; Interp[k]; k++)
     if (InterpId[k] == a->interp) ii = k;
+  for (int k = 0; AggInterp[k]; k++)
+    if (AggInterpId[k] == a->agginterp) ai = k;
   PetscOptionsHeadBegin(PetscOptionsObject, "BoomerAMG for the displacements as a system of 3 functions (-pc_type amgsys)");
   PetscCall(PetscOptionsReal("-pc_amgsys_strong_threshold", "Strength threshold (3D elasticity: 0.5 to 0.9)", NULL, a->theta, &a->theta, NULL));
   PetscCall(PetscOptionsEList("-pc_amgsys_coarsen_type", "Coarsening", NULL, Coarsen, 6, Coarsen[ci], &ci, NULL));
   PetscCall(PetscOptionsEList("-pc_amgsys_interp_type", "Interpolation", NULL, Interp, 6, Interp[ii], &ii, NULL));
   PetscCall(PetscOptionsInt("-pc_amgsys_P_max", "Largest number of entries per row of the interpolation (0: no limit)", NULL, a->pmax, &a->pmax, NULL));
   PetscCall(PetscOptionsInt("-pc_amgsys_agg_nl", "Levels of aggressive coarsening", NULL, a->aggnl, &a->aggnl, NULL));
+  PetscCall(PetscOptionsEList("-pc_amgsys_agg_interp_type", "Interpolation on the levels of aggressive coarsening (multipass, or hypre's two-stage ones)", NULL, AggInterp, 7, AggInterp[ai], &ai, NULL));
+  PetscCall(PetscOptionsEList("-pc_amgsys_relax_order", "Order of the smoothing: natural (hypre's default), or CF (coarse points first going down, fine first going up: PCHYPRE's default)", NULL, Order, 2, Order[oi], &oi, NULL));
   PetscCall(PetscOptionsInt("-pc_amgsys_sweeps", "Smoothing sweeps down and up", NULL, a->sweeps, &a->sweeps, NULL));
   PetscCall(PetscOptionsInt("-pc_amgsys_relax_type", "hypre's relaxation type (6: symmetric Gauss-Seidel/Jacobi hybrid, 8: l1 symmetric Gauss-Seidel, 18: l1 Jacobi)", NULL, a->relax, &a->relax, NULL));
   PetscOptionsHeadEnd();
@@ -246,6 +259,8 @@ static PetscErrorCode PCSetFromOptions_AMGSys(PC pc, PetscOptionItems *PetscOpti
   PetscCheck(a->sweeps >= 1 && a->pmax >= 0 && a->aggnl >= 0, PetscObjectComm((PetscObject)pc), PETSC_ERR_USER_INPUT, "-pc_amgsys_sweeps at least 1, -pc_amgsys_P_max and -pc_amgsys_agg_nl at least 0");
   a->coarsen = CoarsenId[ci];
   a->interp  = InterpId[ii];
+  a->agginterp = AggInterpId[ai];
+  a->order     = oi;
   PetscFunctionReturn(0);
 }
 
@@ -256,7 +271,7 @@ static PetscErrorCode PCView_AMGSys(PC pc, PetscViewer v)
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)v, PETSCVIEWERASCII, &ascii));
-  if (ascii) PetscCall(PetscViewerASCIIPrintf(v, "  BoomerAMG, 3 functions from the mesh's sections: strength %g, coarsening %d, interpolation %d, P_max %d, aggressive levels %d, sweeps %d, relaxation %d\n", (double)a->theta, (int)a->coarsen, (int)a->interp, (int)a->pmax, (int)a->aggnl, (int)a->sweeps, (int)a->relax));
+  if (ascii) PetscCall(PetscViewerASCIIPrintf(v, "  BoomerAMG, 3 functions from the mesh's sections: strength %g, coarsening %d, interpolation %d, P_max %d, aggressive levels %d (interpolation %d), sweeps %d, relaxation %d (%s order)\n", (double)a->theta, (int)a->coarsen, (int)a->interp, (int)a->pmax, (int)a->aggnl, (int)a->agginterp, (int)a->sweeps, (int)a->relax, Order[a->order]));
   PetscFunctionReturn(0);
 }
 
@@ -273,6 +288,8 @@ static PetscErrorCode PCCreate_AMGSys(PC pc)
   a->aggnl   = 1;
   a->sweeps  = 2;
   a->relax   = 6;
+  a->order     = 0;
+  a->agginterp = 4; /* multipass */
   pc->data                = a;
   pc->ops->setup          = PCSetUp_AMGSys;
   pc->ops->apply          = PCApply_AMGSys;
