@@ -304,6 +304,16 @@ from 8.8e-3, where a reduction by 1e-3 is still needed to reach the tolerance (1
 shortened, not the 78 before it (from 0.022); not run again. So the bound of 50 is limited by the
 solves of the iterations before the last, from residuals 1e-5 to 1e-6 of the first, which sit at
 the contact zone's edge.
+
+**The Krylov method.** One BiCGStab iteration applies the preconditioner twice, one GMRES
+iteration once: in iterations BiCGStab looks better, in time GMRES is (the first step of 1 mm,
+`cases/solver_amgsys.opts` with `-ksp_type` changed, 1 rank): at 25 600 hexahedra BiCGStab 138
+Krylov iterations in the step (most 35), 39 s; BiCGStab(2) (`bcgsl`) 136 (most 38), 41 s;
+GMRES(100) 224 (most 50), 30 s. At 100 352 GMRES(100) 250 (44, 28, 61, 61, 63, 37; most 63), 155 s
+against BiCGStab's 185 (most 49), 222 s, at 1.114e9 against 1.008e9 B peak (the Krylov basis:
+one vector of the unknowns per iteration, which at 1 010 224 hexahedra would add some
+0.2 GiB per 100 000 hexahedra at 60 iterations). The files keep BiCGStab for the memory target;
+GMRES is the faster choice where memory allows.
 """
 
 
