@@ -81,6 +81,16 @@ PY
 atrito 1 both $CASE -output_interval 0 -tool_die_contact_set zmin,zmax -tool_holder_contact_set zmax,zmin &&
   for f in history contact; do $PY tests/compare_csv.py "$OUT/run1/$f.csv" "$OUT/both/$f.csv" --rtol 1e-10 --skip 'residual_*' --int-tol newton_its=1 --label "nodes in both tools' sets: $f.csv as with one set per tool"; done
 
+# the smoothing of the normal force per tool: -tool_<t>_gap_smoothing on every tool is the global
+# -contact_gap_smoothing, and on the holder alone it changes the results
+atrito 1 sm_all $CASE -output_interval 0 -contact_gap_smoothing 0.002 &&
+  atrito 1 sm_tools $CASE -output_interval 0 -tool_die_gap_smoothing 0.002 -tool_holder_gap_smoothing 0.002 &&
+  for f in history contact; do $PY tests/compare_csv.py "$OUT/sm_all/$f.csv" "$OUT/sm_tools/$f.csv" --rtol 0 --label "-tool_<t>_gap_smoothing 0.002 on every tool: $f.csv as -contact_gap_smoothing 0.002"; done
+atrito 1 sm_hold $CASE -output_interval 0 -tool_holder_gap_smoothing 0.002 &&
+  ! $PY tests/compare_csv.py "$OUT/run1/contact.csv" "$OUT/sm_hold/contact.csv" --rtol 1e-6 --skip 'residual_*' --label x >/dev/null &&
+  ok "-tool_holder_gap_smoothing 0.002 alone changes the results (contact.csv differs from the plain law's beyond 1e-6)" ||
+  not_ok "-tool_holder_gap_smoothing 0.002 alone: contact.csv as the plain law's, or the run failed"
+
 # 7. bad input: one-line errors naming the option
 bad() { # bad EXPECT NP ARGS...
   local expect=$1 np=$2; shift 2
@@ -97,4 +107,5 @@ bad "-tool_holder_force_z: the tool's -tool_holder_motion or -tool_holder_path m
 bad "-tool_holder_force_z nan. must be a finite number" 1 $CASE -tool_holder_force_z nan
 bad "-tool_die_contact_set: the mesh has no set named 'nowhere'" 2 $CASE -tool_die_contact_set nowhere
 bad "-tool_holder_friction -1. must be >= 0" 1 $CASE -tool_holder_friction -1
+bad "-tool_die_gap_smoothing -0.01 must be >= 0" 2 $CASE -tool_die_gap_smoothing -0.01
 bad "-tool_holder_penalty_normal 'soft' is neither a number nor auto" 1 $CASE -tool_holder_penalty_normal soft

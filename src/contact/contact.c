@@ -23,7 +23,7 @@ typedef struct {
 } PairMemo;
 
 /* A tool's contact settings (-tool_<name>_contact_set, _penalty_normal, _penalty_tangential,
-   _friction; the global -contact_* ones by default) and its drive: per direction, by the
+   _friction, _gap_smoothing; the global -contact_* ones by default) and its drive: per direction, by the
    prescribed displacement (ToolShift plus a held offset) or by a force (target fscale times the
    amplitude: the curve famp, or the ramp a(t) = t when famp is empty), the displacement then an
    unknown of the system (block >= 0: its 3 unknowns, the current values d). */
@@ -252,7 +252,7 @@ static PetscErrorCode ToolContactSetFromOptions(Contact c, PetscInt t)
   char         prefix[PETSC_MAX_PATH_LEN], title[PETSC_MAX_PATH_LEN], kn[64] = "", kt[64] = "", amp[PETSC_MAX_PATH_LEN] = "";
   char        *sets[8];
   PetscInt     nsets = 8;
-  PetscBool    sset = PETSC_FALSE, skn = PETSC_FALSE, skt = PETSC_FALSE, smu = PETSC_FALSE, sf[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE}, samp = PETSC_FALSE;
+  PetscBool    sset = PETSC_FALSE, skn = PETSC_FALSE, skt = PETSC_FALSE, smu = PETSC_FALSE, sdl = PETSC_FALSE, sf[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE}, samp = PETSC_FALSE;
   PetscReal    f[3] = {0, 0, 0};
 
   PetscFunctionBeginUser;
@@ -267,6 +267,7 @@ static PetscErrorCode ToolContactSetFromOptions(Contact c, PetscInt t)
   PetscCall(PetscOptionsString("-penalty_normal", "Normal penalty K_N of this tool's contact, or auto (default -contact_penalty_normal)", NULL, kn, kn, sizeof(kn), &skn));
   PetscCall(PetscOptionsString("-penalty_tangential", "Tangential penalty K_T of this tool's contact, or auto (default -contact_penalty_tangential)", NULL, kt, kt, sizeof(kt), &skt));
   PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient of this tool's contact (default -contact_friction)", NULL, tc->law.mu, &tc->law.mu, &smu));
+  PetscCall(PetscOptionsReal("-gap_smoothing", "Width (a length) over which this tool's normal contact force is smoothed about gap 0 (default -contact_gap_smoothing)", "doc/contact.md", tc->law.delta, &tc->law.delta, &sdl));
   for (int k = 0; k < 3; k++) {
     char name[16], help[160];
     PetscCall(PetscSNPrintf(name, sizeof(name), "-force_%c", ax[k]));
@@ -305,7 +306,8 @@ static PetscErrorCode ToolContactSetFromOptions(Contact c, PetscInt t)
   PetscCheck(!tc->ktauto || tc->kauto, comm, PETSC_ERR_USER_INPUT, "-tool_%s_penalty_tangential auto needs the automatic normal penalty (-tool_%s_penalty_normal auto)", tl->name, tl->name);
   PetscCheck(!(c->per_area && tc->kauto), comm, PETSC_ERR_USER_INPUT, "-tool_%s_penalty_normal auto does not combine with -contact_penalty_per_area", tl->name);
   PetscCheck(tc->law.mu >= 0 && (tc->law.mu == 0 || PetscIsNormalReal(tc->law.mu)), comm, PETSC_ERR_USER_INPUT, "-tool_%s_friction %g must be >= 0", tl->name, (double)tc->law.mu);
-  tc->own = (sset || skn || skt || smu) ? PETSC_TRUE : PETSC_FALSE;
+  PetscCheck(tc->law.delta >= 0 && !PetscIsInfOrNanReal(tc->law.delta), comm, PETSC_ERR_USER_INPUT, "-tool_%s_gap_smoothing %g must be >= 0", tl->name, (double)tc->law.delta);
+  tc->own = (sset || skn || skt || smu || sdl) ? PETSC_TRUE : PETSC_FALSE;
   for (int k = 0; k < 3; k++) {
     PetscBool moves = tl->motion[k] != 0 ? PETSC_TRUE : PETSC_FALSE;
     for (int p = 0; p < tl->npath; p++)
@@ -859,6 +861,11 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
           }
         PetscCall(PetscStrlen(drv, &l));
         PetscCall(PetscSNPrintf(drv + l, sizeof(drv) - l, ", regularising stiffness %g", (double)tc->kreg));
+      }
+      if (tc->law.delta > 0) {
+        size_t l = 0;
+        PetscCall(PetscStrlen(drv, &l));
+        PetscCall(PetscSNPrintf(drv + l, sizeof(drv) - l, ", gap smoothing %g", (double)tc->law.delta));
       }
       if (tc->kauto) PetscCall(PetscPrintf(contact->comm, "contact: tool %s: %" PetscInt_FMT " slave nodes, K_N per node (automatic), K_T %s, mu %g%s\n", contact->tools[t].name, (PetscInt)loc[0], tc->ktauto ? "per node (automatic)" : "as given", (double)tc->law.mu, drv));
       else PetscCall(PetscPrintf(contact->comm, "contact: tool %s: %" PetscInt_FMT " slave nodes, K_N %g, K_T %g, mu %g%s\n", contact->tools[t].name, (PetscInt)loc[0], (double)tc->law.KN, (double)tc->law.KT, (double)tc->law.mu, drv));
