@@ -269,8 +269,8 @@ each, as with the file's settings); two-stage extended+i interpolation on the ag
 The 1 010 224-hexahedra row and the ones above were run before `-newton_ksp_target` (below); the
 bound of 50 holds to 100 352 hexahedra on the whole blank (25 600: 35 with the option, 64
 without) and to 9 600 on the quarter blank through 40 mm, not at 250 512 (54) nor at 1 010 224
-(78 at most, in the last two Newton iterations, whose linear solves start from a residual 1e-7
-of the first); a step at 250 512 takes a third of the time it took. The step at 1 010 224 hexahedra is the first whole step at that size:
+(78 at most, in the last two Newton iterations, whose linear solves start from residuals
+2e-5 and 5e-9 of the first); a step at 250 512 takes a third of the time it took. The step at 1 010 224 hexahedra is the first whole step at that size:
 9 Newton iterations (|R| 1365, 312, 112, 107, 84, 28, 2.6, 0.022, 6.6e-6, 2.8e-9: four slow
 iterations before the quadratic end, as contact spreads over 505 938 slave nodes), no cut, 48
 minutes on the 2 shared cores; its peak resident size, sampled every 15 s and from
@@ -285,8 +285,8 @@ was enough (to 5.9e-9). `-newton_ksp_target η` (src/process/stepper.c) gives th
 Newton iteration k the relative tolerance max(`-ksp_rtol`, η tol / |R_k|), so only an iteration
 that starts below η / `-ksp_rtol` times the tolerance (50 times for η = 0.05 and 1e-3) is
 affected; both solver files set η = 0.05. The residual
-BiCGStab measures (preconditioned) fell 2.5 to 5 times further than |R| did, hence η well below
-1:
+BiCGStab measures (preconditioned) fell 2.5 to 5.5 times further than |R| did, hence η well
+below 1:
 
 | η | Krylov per solve, 25 600 hexahedra | in the step (most) | Newton its | final \|R\| / tol | step s |
 |---|---|---|---|---|---|
@@ -302,8 +302,8 @@ iteration (from 8.1e-3). At 250 512 (2 ranks) nothing changes: 41, 31, 25, 31, 4
 from 8.8e-3, where a reduction by 1e-3 is still needed to reach the tolerance (1.5e-6). At
 1 010 224 the last solve (66) started from 6.6e-6 with the tolerance near 1.4e-6 and would be
 shortened, not the 78 before it (from 0.022); not run again. So the bound of 50 is limited by the
-solves of the iterations before the last, from residuals 1e-5 to 1e-6 of the first, which sit at
-the contact zone's edge.
+solves of the iterations before the last, from residuals 3e-6 to 2e-5 of the first (100 352:
+3.3e-6, 250 512: 5.7e-6, 1 010 224: 1.6e-5), which sit at the contact zone's edge.
 
 **The Krylov method.** One BiCGStab iteration applies the preconditioner twice, one GMRES
 iteration once: in iterations BiCGStab looks better, in time GMRES is (the first step of 1 mm,
