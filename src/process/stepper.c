@@ -266,20 +266,19 @@ static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, P
        tolerance tol, not a further factor -ksp_rtol below |R| (at the last iteration |R| is often
        within a few times tol, and reducing it by 1e-3 cost the most Krylov iterations of the
        step: the residual left there sits at the contact zone's edge). Its relative residual
-       rtol_k = max(-ksp_rtol, eta tol / |R_k|); the quadratic term's part of the next residual
-       is already below tol when Newton is that close */
+       rtol_k = max(-ksp_rtol, eta tol / |R_k|); near the solution the quadratic term's part of
+       the next residual is far below tol, so the linear solve's error is what remains */
     KSP       ksp;
-    PetscReal rt, ka, kd, atol, rtol, stol;
-    PetscInt  km, maxit, maxf;
+    PetscReal rt, atol, rtol, stol;
+    PetscInt  maxit, maxf;
     PetscCall(SNESGetKSP(snes, &ksp));
-    PetscCall(KSPGetTolerances(ksp, &rt, &ka, &kd, &km));
     if (it == 0) {
       PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, &maxf));
       pb->newton_tol = PetscMax(atol, rtol * fnorm);
     }
     rt = pb->ksp_rtol0;
     if (*reason == SNES_CONVERGED_ITERATING && fnorm > 0) rt = PetscMax(rt, PetscMin(0.5, pb->ksp_target * pb->newton_tol / fnorm));
-    PetscCall(KSPSetTolerances(ksp, rt, ka, kd, km));
+    PetscCall(KSPSetTolerances(ksp, rt, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT)); /* the others as set */
   }
   if (*reason == SNES_CONVERGED_ITERATING && w > 0 && it >= w && it < 256 && !(fnorm < pb->stall_factor * pb->fnorm_hist[it - w])) {
     *reason         = SNES_DIVERGED_DTOL;

@@ -20,8 +20,8 @@
    Options (prefix: the preconditioner's, e.g. none or -ksp's): -pc_amgsys_strong_threshold,
    -pc_amgsys_coarsen_type, -pc_amgsys_interp_type, -pc_amgsys_P_max, -pc_amgsys_agg_nl,
    -pc_amgsys_agg_interp_type, -pc_amgsys_sweeps, -pc_amgsys_relax_type, -pc_amgsys_relax_order;
-   defaults those of
-   cases/solver_amg_sheet.opts. The Jacobian is used in hypre's format as it is
+   defaults those of cases/solver_amg_sheet.opts (PCHYPRE there) but for the relaxation order,
+   hypre's natural one here. The Jacobian is used in hypre's format as it is
    (-assembly_mat_type hypre), any other type is converted at each setup. One V-cycle per
    application. hypre's nodal coarsening (SetNodal) is not offered: it needs every node to have all
    three unknowns, which is what a constrained component breaks. */
