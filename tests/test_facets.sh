@@ -48,10 +48,13 @@ atrito 1 hemi -options_file cases/hemisphere_frictionless_analytic.opts -output_
 atrito 1 hemitool -options_file cases/hemisphere_frictionless_toolfile.opts -output_interval 0
 compare "$OUT/hemi/contact.csv" "$OUT/hemitool/contact.csv" 12 "hemisphere, tools from .tool files: contact history as with the options"
 atrito 1 hemistl -options_file cases/hemisphere_frictionless_stl24.opts -output_interval 0
-atrito 2 hemistl2 -options_file cases/hemisphere_frictionless_stl24.opts -output_interval 0
-#    1 and 2 ranks: 5 digits (round-off of the assembly moves a node across a crease between two
-#    smoothed facets, where the normal jumps by up to 1e-2 rad: about 1e-6 of the force)
-compare "$OUT/hemistl/contact.csv" "$OUT/hemistl2/contact.csv" 5 "hemisphere with STL tools: contact history at np=1 and np=2"
+#    1 and 2 ranks over the first 20 mm (as for the deck below: further on, a node held in a
+#    crease of the die makes the number of Newton iterations at 2 ranks vary from run to run, and
+#    may cut a step, doc/tools.md "A node held in a crease"): 8 digits (6e-13 measured)
+HALF="-tool_punch_motion 0,0,20 -load_steps 20 -load_dt_max 0.1 -output_interval 0"
+atrito 1 hemistl1h -options_file cases/hemisphere_frictionless_stl24.opts $HALF
+atrito 2 hemistl2h -options_file cases/hemisphere_frictionless_stl24.opts $HALF
+compare "$OUT/hemistl1h/contact.csv" "$OUT/hemistl2h/contact.csv" 8 "hemisphere with STL tools: contact history to 20 mm at np=1 and np=2"
 $PY - "$OUT/hemi/contact.csv" "$OUT/hemistl/contact.csv" <<'PYEOF'
 import csv, sys
 last = lambda p: [r for r in csv.DictReader(open(p)) if r["tool"] == "punch"][-1]
@@ -66,11 +69,20 @@ PYEOF
 #    the same quadrangles as the Gmsh file, the facets numbered otherwise: a node in a crease
 #    between two smoothed facets (normals up to 1e-2 rad apart) takes the smaller index, which may
 #    be the other side here, so the force components agree to 1e-6 of the largest force (2.3e-7
-#    measured; the punch force to 2e-10); 1 and 2 ranks to 1e-8. At every step.
+#    measured; the punch force to 2e-10). 1 and 2 ranks to 1e-8 at every step of the first 20 mm
+#    (the same steps in millimetres): from 22.5 mm on, a node on the die's diagonal (x = y, a
+#    symmetry line of the process), pressed 5e-3 mm into it with about 520 N, sits on the edge
+#    between two smoothed facets whose normals differ by 1.9e-3 rad, so its force jumps by about
+#    1 N across it and Newton crosses the edge back and forth; which side an iteration lands on is
+#    decided by round-off, and MUMPS's parallel factorisation is not the same to the last digit
+#    from one run to the next: at 2 ranks the number of Newton iterations varies, and in 2 runs of
+#    16 step 14 was cut (then the path, and the forces, differ by 6e-3) (doc/tools.md, "A node
+#    held in a crease")
 atrito 1 hemimsh -options_file cases/hemisphere_frictionless_msh24.opts -output_interval 0
 atrito 1 hemiinp -options_file cases/hemisphere_frictionless_inp24.opts -output_interval 0
-atrito 2 hemiinp2 -options_file cases/hemisphere_frictionless_inp24.opts -output_interval 0
-for pair in "hemimsh hemiinp 1e-6 .inp deck against the Gmsh file (np=1)" "hemiinp hemiinp2 1e-8 .inp deck, np=1 against np=2"; do
+atrito 1 hemiinp1h -options_file cases/hemisphere_frictionless_inp24.opts $HALF
+atrito 2 hemiinp2h -options_file cases/hemisphere_frictionless_inp24.opts $HALF
+for pair in "hemimsh hemiinp 1e-6 .inp deck against the Gmsh file (np=1)" "hemiinp1h hemiinp2h 1e-8 .inp deck to 20 mm, np=1 against np=2"; do
   set -- $pair
   a=$1 b=$2 tol=$3; shift 3
   $PY - "$OUT/$a/contact.csv" "$OUT/$b/contact.csv" "$tol" "$*" <<'PYEOF'
