@@ -102,6 +102,8 @@ typedef struct {
   double  path[4 * 32];
   int     absent;        /* the tool is absent in the current stage: it pairs no node (ToolProject)  */
   double  bbox[6];       /* reference bounding box of all patches: xmin, xmax, ymin, ymax, zmin, zmax */
+  double  edge_tol;      /* > 0: a point beside an open edge of the tool by more than this is no contact
+                            (ToolProject; set by the contact, -contact_edge_tolerance); 0: not checked */
 } Tool;
 
 /* Evaluation of a patch at (xi, eta) in its reference position: point x, first derivatives
@@ -125,8 +127,12 @@ typedef struct {
    every patch is tried (a bounding-box test first), each by Newton on (xi, eta) with a safeguarded
    fallback (clamped to [0,1]^2, a sampling start when Newton fails); among the patches the
    interior solution of smallest |y - x| wins, so that a point beyond one patch's edge moves to the
-   neighbouring patch. Returns 0 on success, 1 if no patch gave a point. `maxdist`: patches whose
-   bounding box lies farther than this from y are skipped (PETSC_INFINITY: none). */
+   neighbouring patch. With t->edge_tol > 0, a closest point held on a patch's boundary where no
+   other patch of the tool continues it (an open edge: no patch within edge_tol of the point), with y
+   beside it by more than edge_tol in the tangent plane, is not taken: y is beside the tool, not
+   over it (the best interior point of another patch if there is one, else no point). Returns 0 on
+   success, 1 if no patch gave a point. `maxdist`: patches whose bounding box lies farther than this
+   from y are skipped (PETSC_INFINITY: none). */
 int ToolProject(const Tool *t, const double shift[3], const double y[3], double maxdist, Projection *pr);
 
 /* ToolProject with the projection of an earlier call as a hint (its patch, xi, eta; NULL or a

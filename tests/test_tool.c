@@ -690,6 +690,69 @@ static void test_pole(void)
 
 /* ------------------------------------------------------------------ 6. multi-patch tools */
 
+/* A point beside an open edge of a tool (its closest point held on a patch boundary that no patch
+   continues): no contact when it lies beside the edge by more than t->edge_tol and by more than
+   it lies inside; with edge_tol 0 the gap along the edge's normal, as before */
+static void test_open_edge(void)
+{
+  Patch P[2];
+  Tool  t;
+  const double sh[3] = {0, 0, 0};
+  for (int k = 0; k < 2; k++) {
+    memset(&P[k], 0, sizeof(P[k]));
+    settype(&P[k], "plane");
+    P[k].sense = 1;
+    set3(P[k].plane.o, k, 0, 0);
+    set3(P[k].plane.e1, 1, 0, 0);
+    set3(P[k].plane.e2, 0, 1, 0);
+    P[k].plane.u0 = 0;
+    P[k].plane.u1 = 1;
+    P[k].plane.v0 = 0;
+    P[k].plane.v1 = 1;
+  }
+  tool_init(&t, "edge", 2, P);
+  Projection pr;
+  double     n[3], y[3];
+  /* the normal of the planes (the side a node comes from) */
+  set3(y, 0.5, 0.5, 0.1);
+  (void)ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  for (int i = 0; i < 3; i++) n[i] = pr.n[i];
+  /* beside the edge x = 0 by 0.5 at 1e-7 inside the plane's level */
+  for (int i = 0; i < 3; i++) y[i] = (i == 0 ? -0.5 : i == 1 ? 0.5 : 0.0) - 1e-7 * n[i];
+  t.edge_tol = 0;
+  int r = ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  TU_CHECK(r == 0 && !pr.interior && fabs(pr.gap + 1e-7) < 1e-12, "open edge, edge_tol 0: a point 0.5 beside the edge keeps the gap along the edge's normal (%d, interior %d, gap %.3e)", r, pr.interior, pr.gap);
+  t.edge_tol = 1e-3;
+  r          = ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  TU_CHECK(r == 1, "open edge, edge_tol 1e-3: a point 0.5 beside the edge is no contact (returns %d)", r);
+  /* beside by 5e-4 < edge_tol: kept */
+  for (int i = 0; i < 3; i++) y[i] = (i == 0 ? -5e-4 : i == 1 ? 0.5 : 0.0) - 1e-4 * n[i];
+  r = ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  TU_CHECK(r == 0 && fabs(pr.gap + 1e-4) < 1e-12, "open edge: a point 5e-4 beside the edge (edge_tol 1e-3) is kept (%d, gap %.3e)", r, pr.gap);
+  /* beside by 0.01, inside by 0.02: kept (a concave seam's corner) */
+  for (int i = 0; i < 3; i++) y[i] = (i == 0 ? -0.01 : i == 1 ? 0.5 : 0.0) - 0.02 * n[i];
+  r = ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  TU_CHECK(r == 0 && fabs(pr.gap + 0.02) < 1e-12, "open edge: a point 0.01 beside the edge but 0.02 inside is kept (%d, gap %.3e)", r, pr.gap);
+  /* beside by 0.02, inside by 0.01: no contact */
+  for (int i = 0; i < 3; i++) y[i] = (i == 0 ? -0.02 : i == 1 ? 0.5 : 0.0) - 0.01 * n[i];
+  r = ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  TU_CHECK(r == 1, "open edge: a point 0.02 beside the edge and 0.01 inside is no contact (returns %d)", r);
+  /* over the seam x = 1 between the two planes and over the second one: interior, kept */
+  for (int i = 0; i < 3; i++) y[i] = (i == 0 ? 1.0 : i == 1 ? 0.5 : 0.0) - 1e-7 * n[i];
+  r = ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  TU_CHECK(r == 0 && fabs(pr.gap + 1e-7) < 1e-12, "open edge: a point on the seam between two patches is kept (%d, gap %.3e)", r, pr.gap);
+  for (int i = 0; i < 3; i++) y[i] = (i == 0 ? 1.3 : i == 1 ? 0.5 : 0.0) - 1e-7 * n[i];
+  r = ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  TU_CHECK(r == 0 && pr.interior && pr.patch == 1, "open edge: a point beyond the first patch's edge over the second is on the second (%d, patch %d)", r, pr.patch);
+  /* beside the far edge x = 2 by 0.5: no contact; beside the side edge y = 0 by 0.5: no contact */
+  for (int i = 0; i < 3; i++) y[i] = (i == 0 ? 2.5 : i == 1 ? 0.5 : 0.0) - 1e-7 * n[i];
+  r = ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  TU_CHECK(r == 1, "open edge: a point beside the far edge is no contact (returns %d)", r);
+  for (int i = 0; i < 3; i++) y[i] = (i == 0 ? 1.5 : i == 1 ? -0.5 : 0.0) - 1e-7 * n[i];
+  r = ToolProject(&t, sh, y, PETSC_INFINITY, &pr);
+  TU_CHECK(r == 1, "open edge: a point beside the seam's end (a corner of both patches) is no contact (returns %d)", r);
+}
+
 static void test_multipatch(void)
 {
   const double c[3] = {0, 0, 0}, sh[3] = {0.0, 0.0, 0.7};
@@ -1866,6 +1929,7 @@ int main(int argc, char **argv)
 
   /* 6. multi-patch */
   test_multipatch();
+  test_open_edge();
 
   /* 7. normal derivative */
   test_normal_derivative("dn/dy plane", &pl, 0.5, 1);

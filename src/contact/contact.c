@@ -78,6 +78,7 @@ struct _p_Contact {
   PetscBool  frame_rotate; /* -contact_frame_carry rotation: eq 30's seed carried by the rotation
                               between the normals (ContactFrameCarry); else the paper's eq 30 */
   PetscReal  search_opt;   /* pairing: skip a tool whose box is farther than this (<= 0: auto) */
+  PetscReal  edge_tol;     /* -contact_edge_tolerance (< 0: auto, 1e-3 of each tool's box diagonal) */
   PetscReal  symmetry;     /* multiplicity of the model (0: from the mesh)                    */
   PetscReal  E_body;       /* the body's Young's modulus (ContactSetYoungModulus; 0: unknown)   */
   PetscBool  kauto, ktauto;/* K_N (K_T) per node from the elements under it (auto)              */
@@ -465,6 +466,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   c->law.KT       = 5e3;
   c->law.mu       = 0;
   c->search_opt   = -1;
+  c->edge_tol     = -1;
   c->symmetry     = 0;
   PetscOptionsBegin(comm, NULL, "Contact with rigid tools", NULL);
   {
@@ -552,12 +554,21 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     c->frame_rotate = t == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   PetscCall(PetscOptionsReal("-contact_search_distance", "Pairing: tools farther than this from a node are skipped (default: 5% of the largest tool box)", NULL, c->search_opt, &c->search_opt, NULL));
+  {
+    PetscBool set = PETSC_FALSE;
+    PetscCall(PetscOptionsReal("-contact_edge_tolerance", "Pairing: a node beside an open edge of a tool (its closest point on a patch boundary that no other patch continues) by more than this, in the tool's tangent plane, is not in contact with the tool (default: 1e-3 of the tool's box diagonal; 0: not checked)", "doc/contact.md", c->edge_tol, &c->edge_tol, &set));
+    PetscCheck(!set || (c->edge_tol >= 0 && PetscIsNormalReal(c->edge_tol + 1)), comm, PETSC_ERR_USER_INPUT, "-contact_edge_tolerance %g must be a length >= 0", (double)c->edge_tol);
+  }
   PetscCall(PetscOptionsReal("-model_symmetry", "Multiplicity of the model: force_full = force * multiplicity (default 4 for the quarter blank, else 1)", NULL, c->symmetry, &c->symmetry, NULL));
   PetscCheck(c->symmetry == 0 || c->symmetry >= 1, comm, PETSC_ERR_USER_INPUT, "-model_symmetry %g must be >= 1", (double)c->symmetry);
   PetscOptionsEnd();
   PetscCall(ToolsCreateFromOptions(comm, &c->ntools, &c->tools));
   PetscCall(PetscCalloc1(c->ntools + 1, &c->tc));
-  for (PetscInt t = 0; t < c->ntools; t++) PetscCall(ToolContactSetFromOptions(c, t));
+  for (PetscInt t = 0; t < c->ntools; t++) {
+    const double *b = c->tools[t].bbox;
+    c->tools[t].edge_tol = c->edge_tol >= 0 ? c->edge_tol : 1e-3 * PetscSqrtReal(PetscSqr(b[1] - b[0]) + PetscSqr(b[3] - b[2]) + PetscSqr(b[5] - b[4]));
+    PetscCall(ToolContactSetFromOptions(c, t));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -315,6 +315,27 @@ static int ToolProjectImpl(const Tool *t, const double shift[3], const double y[
     best  = ba;
     kbest = ka;
   }
+  /* held on a patch's boundary with y beside it, in the tangent plane, by more than edge_tol and by
+     more than it lies inside (the offset from the normal line through the point above both
+     edge_tol and -gap): y is beside the tool, not over it or in it. Without the check the gap
+     along the edge's normal presses a node anywhere beyond an open edge (a blank holder's plane
+     pressing the sheet under the punch, 40 mm from the holder's inner edge). A node inside the
+     tool by more than it is beside the edge is kept: the concave seam between two patches, where
+     a penetrating node's closest point is the seam itself. */
+  if (!best.interior && t->edge_tol > 0.0) {
+    double n[3], r[3], g = 0.0, o2 = 0.0;
+    PatchNormal(&t->patch[kbest], best.xi, best.eta, n);
+    for (int i = 0; i < 3; i++) {
+      r[i] = yr[i] - best.x[i];
+      g += r[i] * n[i];
+    }
+    for (int i = 0; i < 3; i++) o2 += (r[i] - g * n[i]) * (r[i] - g * n[i]);
+    if (o2 > t->edge_tol * t->edge_tol && (g >= 0.0 || o2 > g * g)) {
+      if (ki < 0) return 1;
+      best  = bi;
+      kbest = ki;
+    }
+  }
   pr->patch    = kbest;
   pr->xi       = best.xi;
   pr->eta      = best.eta;
