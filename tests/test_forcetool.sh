@@ -91,6 +91,26 @@ atrito 1 sm_hold $CASE -output_interval 0 -tool_holder_gap_smoothing 0.002 &&
   ok "-tool_holder_gap_smoothing 0.002 alone changes the results (contact.csv differs from the plain law's beyond 1e-6)" ||
   not_ok "-tool_holder_gap_smoothing 0.002 alone: contact.csv as the plain law's, or the run failed"
 
+# the holder beside an open edge: the NUMISHEET'93 cup's close stage (the holder, a plane from
+# x = 45 or y = 45 and a Coons corner of radius 20 about (25, 25), pressed on the sheet at zero gap
+# beside the punch's head): the holder pairs exactly the top nodes of its footprint (before the
+# pairing's open-edge rule, also up to 30 nodes beside its inner edge, and some 200 in the Newton
+# iterates), at 1 and 2 ranks alike
+CUP="-options_file cases/numisheet93_cup_al_coarse.opts -stage_names close -output_interval 0"
+for np in 1 2; do
+  atrito $np cup_close$np $CUP && $PY - "$OUT/cup_close$np/contact.csv" $np <<'PYEOF'
+import csv, math, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["tool"] == "holder"]
+# the quarter blank's top nodes (31 x 31, spacing 2.5) under the holder's footprint
+inside = sum(1 for i in range(31) for j in range(31)
+             if 2.5 * i >= 45 or 2.5 * j >= 45 or (2.5 * i >= 25 and 2.5 * j >= 25 and math.hypot(2.5 * i - 25, 2.5 * j - 25) >= 20))
+act = [int(r["active"]) for r in rows]
+good = len(rows) == 4 and all(a == inside for a in act) and abs(abs(float(rows[-1]["fz"])) - 4900) < 1e-6 * 4900
+print(("ok - " if good else "not ok - ") + f"cup close stage (np={sys.argv[2]}): the holder presses exactly the {inside} top nodes of its footprint at every step (active {act}), its force {float(rows[-1]['fz']):.6g} N")
+PYEOF
+done
+[ -f "$OUT/cup_close1/contact.csv" ] && [ -f "$OUT/cup_close2/contact.csv" ] && $PY tests/compare_csv.py "$OUT/cup_close1/contact.csv" "$OUT/cup_close2/contact.csv" --rtol 1e-8 --skip 'residual_*' --int-tol newton_its=1 --label "cup close stage np=1 against np=2, contact.csv, 1e-8"
+
 # 7. bad input: one-line errors naming the option
 bad() { # bad EXPECT NP ARGS...
   local expect=$1 np=$2; shift 2
