@@ -16,15 +16,24 @@ static const char help[] = "atrito: parallel finite-strain elasto-plastic solver
                            "usage: mpiexec -n N bin/atrito -options_file cases/<case>.opts [-option value ...]\n";
 
 /* One line per error: the message of the error where it was raised, printed once (by rank 0 of
-   the communicator it was raised on). -atrito_traceback keeps PETSc's full traceback instead. */
+   the communicator it was raised on). An error that PETSc's options functions raise on
+   PETSC_COMM_SELF (an unknown value of a list option) is raised alike on every rank, since every
+   rank holds the same options: it is printed by rank 0 of the world alone. -atrito_traceback keeps
+   PETSc's full traceback instead. */
 static PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   if (p == PETSC_ERROR_INITIAL) {
-    PetscMPIInt rank = 0, wrank = 0, wsize = 1;
+    PetscMPIInt     rank = 0, wrank = 0, wsize = 1;
+    const PetscBool replicated = (comm == PETSC_COMM_SELF && fun && !strncmp(fun, "PetscOptions", 12)) ? PETSC_TRUE : PETSC_FALSE;
     if (comm != MPI_COMM_NULL) MPI_Comm_rank(comm, &rank);
     MPI_Comm_rank(MPI_COMM_WORLD, &wrank);
     MPI_Comm_size(MPI_COMM_WORLD, &wsize);
-    if (rank == 0) {
+    if (replicated) {
+      if (wrank == 0) {
+        fprintf(stderr, "atrito: error: %s\n", mess ? mess : "(no message)");
+        fflush(stderr);
+      }
+    } else if (rank == 0) {
       if (wsize > 1 && comm == PETSC_COMM_SELF) fprintf(stderr, "atrito: error on rank %d: %s\n", wrank, mess ? mess : "(no message)");
       else fprintf(stderr, "atrito: error: %s\n", mess ? mess : "(no message)");
       fflush(stderr);
