@@ -127,10 +127,11 @@ typedef struct {
    every patch is tried (a bounding-box test first), each by Newton on (xi, eta) with a safeguarded
    fallback (clamped to [0,1]^2, a sampling start when Newton fails); among the patches the
    interior solution of smallest |y - x| wins, so that a point beyond one patch's edge moves to the
-   neighbouring patch. With t->edge_tol > 0, a closest point held on a patch's boundary where no
-   other patch of the tool continues it (an open edge: no patch within edge_tol of the point), with y
-   beside it by more than edge_tol in the tangent plane, is not taken: y is beside the tool, not
-   over it (the best interior point of another patch if there is one, else no point). Returns 0 on
+   neighbouring patch. With t->edge_tol > 0, a closest point held on a patch's boundary (no patch
+   gave an interior point as close: an open edge of the tool), with y beside it in the tangent plane
+   by more than edge_tol and by more than y lies inside the tool, is not taken: y is beside the
+   tool, not over it (the best interior point of another patch if there is one, else no point;
+   doc/tools.md, projection step 7). Returns 0 on
    success, 1 if no patch gave a point. `maxdist`: patches whose bounding box lies farther than this
    from y are skipped (PETSC_INFINITY: none). */
 int ToolProject(const Tool *t, const double shift[3], const double y[3], double maxdist, Projection *pr);

@@ -556,7 +556,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   PetscCall(PetscOptionsReal("-contact_search_distance", "Pairing: tools farther than this from a node are skipped (default: 5% of the largest tool box)", NULL, c->search_opt, &c->search_opt, NULL));
   {
     PetscBool set = PETSC_FALSE;
-    PetscCall(PetscOptionsReal("-contact_edge_tolerance", "Pairing: a node beside an open edge of a tool (its closest point on a patch boundary that no other patch continues) by more than this, in the tool's tangent plane, is not in contact with the tool (default: 1e-3 of the tool's box diagonal; 0: not checked)", "doc/contact.md", c->edge_tol, &c->edge_tol, &set));
+    PetscCall(PetscOptionsReal("-contact_edge_tolerance", "Pairing: a node beside an open edge of a tool (its closest point held on a patch boundary) by more than this in the tool's tangent plane, and by more than it lies inside the tool, is not in contact with the tool (default: 1e-3 of the tool's box diagonal; 0: not checked)", "doc/contact.md", c->edge_tol, &c->edge_tol, &set));
     PetscCheck(!set || (c->edge_tol >= 0 && PetscIsNormalReal(c->edge_tol + 1)), comm, PETSC_ERR_USER_INPUT, "-contact_edge_tolerance %g must be a length >= 0", (double)c->edge_tol);
   }
   PetscCall(PetscOptionsReal("-model_symmetry", "Multiplicity of the model: force_full = force * multiplicity (default 4 for the quarter blank, else 1)", NULL, c->symmetry, &c->symmetry, NULL));
