@@ -93,9 +93,9 @@ atrito 1 sm_hold $CASE -output_interval 0 -tool_holder_gap_smoothing 0.002 &&
 
 # the holder beside an open edge: the NUMISHEET'93 cup's close stage (the holder, a plane from
 # x = 45 or y = 45 and a Coons corner of radius 20 about (25, 25), pressed on the sheet at zero gap
-# beside the punch's head): the holder pairs exactly the top nodes of its footprint (before the
-# pairing's open-edge rule, also up to 30 nodes beside its inner edge, and some 200 in the Newton
-# iterates), at 1 and 2 ranks alike
+# beside the punch's head): the holder pairs exactly the top nodes of its footprint (with
+# -contact_edge_tolerance 0, the rule off, also 30 to 60 nodes beside its inner edge at the steps'
+# ends, and some 200 in the Newton iterates), at 1 and 2 ranks alike
 CUP="-options_file cases/numisheet93_cup_al_coarse.opts -stage_names close -output_interval 0"
 for np in 1 2; do
   atrito $np cup_close$np $CUP && $PY - "$OUT/cup_close$np/contact.csv" $np <<'PYEOF'
