@@ -258,6 +258,22 @@ int ToolProjectHint(const Tool *t, const double shift[3], const double y[3], dou
   return ToolProjectImpl(t, shift, y, maxdist, hint, pr);
 }
 
+/* the projection of yr (reference frame) on candidate c of patch k: the point in the current
+   position, the normal, the gap */
+static void ProjectionSet(const Tool *t, int k, const PatchCandidate *c, const double yr[3], const double shift[3], Projection *pr)
+{
+  pr->patch    = k;
+  pr->xi       = c->xi;
+  pr->eta      = c->eta;
+  pr->interior = c->interior;
+  PatchNormal(&t->patch[k], c->xi, c->eta, pr->n);
+  pr->gap = 0.0;
+  for (int i = 0; i < 3; i++) {
+    pr->x[i] = c->x[i] + shift[i];
+    pr->gap += (yr[i] - c->x[i]) * pr->n[i];
+  }
+}
+
 static int ToolProjectImpl(const Tool *t, const double shift[3], const double y[3], double maxdist, const Projection *hint, Projection *pr)
 {
   double         yr[3], bd = 0.0, tol = 0.0;
@@ -315,6 +331,7 @@ static int ToolProjectImpl(const Tool *t, const double shift[3], const double y[
     best  = ba;
     kbest = ka;
   }
+  ProjectionSet(t, kbest, &best, yr, shift, pr);
   /* held on a patch's boundary with y beside it, in the tangent plane, by more than edge_tol and by
      more than it lies inside (the offset from the normal line through the point above both
      edge_tol and -gap): y is beside the tool, not over it or in it. Without the check the gap
@@ -323,28 +340,15 @@ static int ToolProjectImpl(const Tool *t, const double shift[3], const double y[
      tool by more than it is beside the edge is kept: the concave seam between two patches, where
      a penetrating node's closest point is the seam itself. */
   if (!best.interior && t->edge_tol > 0.0) {
-    double n[3], r[3], g = 0.0, o2 = 0.0;
-    PatchNormal(&t->patch[kbest], best.xi, best.eta, n);
+    double o2 = 0.0;
     for (int i = 0; i < 3; i++) {
-      r[i] = yr[i] - best.x[i];
-      g += r[i] * n[i];
+      const double o = yr[i] - best.x[i] - pr->gap * pr->n[i];
+      o2 += o * o;
     }
-    for (int i = 0; i < 3; i++) o2 += (r[i] - g * n[i]) * (r[i] - g * n[i]);
-    if (o2 > t->edge_tol * t->edge_tol && (g >= 0.0 || o2 > g * g)) {
+    if (o2 > t->edge_tol * t->edge_tol && (pr->gap >= 0.0 || o2 > pr->gap * pr->gap)) {
       if (ki < 0) return 1;
-      best  = bi;
-      kbest = ki;
+      ProjectionSet(t, ki, &bi, yr, shift, pr);
     }
-  }
-  pr->patch    = kbest;
-  pr->xi       = best.xi;
-  pr->eta      = best.eta;
-  pr->interior = best.interior;
-  PatchNormal(&t->patch[kbest], best.xi, best.eta, pr->n);
-  pr->gap = 0.0;
-  for (int i = 0; i < 3; i++) {
-    pr->x[i] = best.x[i] + shift[i];
-    pr->gap += (yr[i] - best.x[i]) * pr->n[i];
   }
   return 0;
 }
