@@ -17,8 +17,8 @@ typedef enum { PREDICTOR_NONE = 0, PREDICTOR_EXTRAPOLATE, PREDICTOR_TANGENT, PRE
 
 typedef struct {
   /* options */
-  PetscReal dt0, dt_min, dt_max, cut, grow;
-  PetscInt  grow_its, max_cuts, max_steps;
+  PetscReal dt0, dt_min, dt_max, cut, grow, shrink;
+  PetscInt  grow_its, shrink_its, max_cuts, max_steps;
   Predictor predictor;
   PetscReal curvature;     /* -load_predictor_curvature: the share of the quadratic term added to
                               the extrapolation (0: the linear extrapolation)                    */

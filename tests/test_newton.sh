@@ -4,6 +4,9 @@
 # case to 40 mm: the same converged states as the linear extrapolation (contact and reaction
 # forces and reactions to 1e-6, the same steps), fewer Newton iterations (106 against 115 when measured);
 # a run restarted from its checkpoint ends at the same state; 0 leaves the run as it was; a value outside [0, 1] is refused with one line naming the option.
+# The shrinking of the increment after a hard step (-load_shrink_its, -load_shrink_factor; off by
+# default): the seed case never takes more than 10 iterations in a step (the same run with
+# -load_shrink_its 10), and with 5 every step that took more than 5 is followed by one of half its size.
 cd "$(dirname "$0")/.." && . tests/lib.sh
 OUT=$(test_out newton)
 C=cases/hemisphere_frictionless.opts
@@ -65,3 +68,39 @@ atrito_rc 1 bad -options_file $C -load_predictor_curvature 1.5
 [ $RC -ne 0 ] && [ "$(grep -c 'atrito: error' "$OUT/bad.log")" -eq 1 ] && grep -q -- '-load_predictor_curvature 1.5 must lie in \[0, 1\]' "$OUT/bad.log" &&
   ok "-load_predictor_curvature 1.5 refused with one line naming the option" ||
   { not_ok "-load_predictor_curvature 1.5: exit $RC"; tail -n 3 "$OUT/bad.log" | indent; }
+
+# -load_shrink_its 10 leaves the seed case as it is (no step takes more than 10 iterations);
+# with 5, each step after one of more than 5 iterations is half as long (the run's last step may
+# be shorter still, landing on the end)
+atrito 1 shrink10 -options_file $C -output_interval 0 -load_shrink_its 10 &&
+  { cmp -s "$OUT/lin/contact.csv" "$OUT/shrink10/contact.csv" && cmp -s "$OUT/lin/history.csv" "$OUT/shrink10/history.csv" &&
+      ok "-load_shrink_its 10: the seed case as without it (contact.csv and history.csv identical)" ||
+      not_ok "-load_shrink_its 10 changed the seed case"; }
+atrito 1 shrink5 -options_file $C -output_interval 0 -load_shrink_its 5 && {
+  $PY - "$OUT/shrink5.log" "$OUT/lin.log" <<'PYEOF'
+import re, sys
+def steps(f):
+    out, prev = [], 0.0
+    for line in open(f):
+        if "retrying" in line: out.append(None)  # a cut between two converged steps
+        m = re.match(r"step +\d+ +time ([0-9.]+) +its +(\d+)", line)
+        if m:
+            t = float(m.group(1)); out.append((t - prev, int(m.group(2)), t)); prev = t
+    return out
+s, bad, hard = steps(sys.argv[1]), [], 0
+for a, b in zip(s, s[1:]):
+    if a is None or b is None or a[1] <= 5: continue
+    hard += 1
+    if abs(b[0] - 0.5 * a[0]) > 2e-6 and not (b[0] < 0.5 * a[0] and abs(b[2] - 1.0) < 1e-9):  # times printed to 1e-6
+        bad.append(f"after {a[1]} iterations at dt {a[0]:.6g}: dt {b[0]:.6g}")
+base = [x for x in steps(sys.argv[2]) if x]
+most = max(x[1] for x in base)
+ok = hard > 0 and not bad and most <= 10
+print(("ok" if ok else "not ok") + f" - -load_shrink_its 5: {hard} steps of more than 5 Newton iterations, each followed by half its increment"
+      + (f" ({'; '.join(bad[:3])})" if bad else "") + f"; the default run's hardest step {most} iterations (<= 10: -load_shrink_its 10 never shrinks it)")
+PYEOF
+}
+atrito_rc 1 badshrink -options_file $C -load_shrink_factor 0
+[ $RC -ne 0 ] && [ "$(grep -c 'atrito: error' "$OUT/badshrink.log")" -eq 1 ] && grep -q -- '-load_shrink_factor 0. must lie in (0, 1\]' "$OUT/badshrink.log" &&
+  ok "-load_shrink_factor 0 refused with one line naming the option" ||
+  { not_ok "-load_shrink_factor 0: exit $RC"; tail -n 3 "$OUT/badshrink.log" | indent; }

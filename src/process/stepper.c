@@ -16,6 +16,8 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->cut           = 0.5;
   st->grow          = 1.5;
   st->grow_its      = 5;
+  st->shrink        = 0.5;
+  st->shrink_its    = 0;
   st->max_cuts      = 10;
   st->stall_its     = 0;
   st->ksp_target    = 0;
@@ -39,6 +41,8 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     PetscCall(PetscOptionsReal("-load_cut_factor", "Increment factor after a failed step", NULL, st->cut, &st->cut, NULL));
     PetscCall(PetscOptionsReal("-load_grow_factor", "Increment factor after an easy step", NULL, st->grow, &st->grow, NULL));
     PetscCall(PetscOptionsInt("-load_grow_its", "A step is easy when Newton took at most this many iterations", NULL, st->grow_its, &st->grow_its, NULL));
+    PetscCall(PetscOptionsInt("-load_shrink_its", "A converged step is hard when Newton took more than this many iterations: the next increment is multiplied by -load_shrink_factor (0: never)", NULL, st->shrink_its, &st->shrink_its, NULL));
+    PetscCall(PetscOptionsReal("-load_shrink_factor", "Increment factor after a hard step (see -load_shrink_its)", NULL, st->shrink, &st->shrink, NULL));
     PetscCall(PetscOptionsInt("-load_max_cuts", "Successive cuts allowed in one step", NULL, st->max_cuts, &st->max_cuts, NULL));
     PetscCall(PetscOptionsInt("-load_max_steps", "Largest number of converged steps", NULL, st->max_steps, &st->max_steps, NULL));
     PetscCall(PetscOptionsInt("-newton_stall_its", "Newton has stalled (the step fails at once) when |R| has not fallen below -newton_stall_factor times its value this many iterations earlier (0: never)", NULL, st->stall_its, &st->stall_its, NULL));
@@ -55,6 +59,8 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     PetscCheck(st->dt_min > 0 && st->dt_min <= st->dt0, comm, PETSC_ERR_USER_INPUT, "-load_dt_min %g must lie in (0, first increment %g]", (double)st->dt_min, (double)st->dt0);
     PetscCheck(st->cut > 0 && st->cut < 1, comm, PETSC_ERR_USER_INPUT, "-load_cut_factor %g must lie in (0, 1)", (double)st->cut);
     PetscCheck(st->grow >= 1 && PetscIsNormalReal(st->grow), comm, PETSC_ERR_USER_INPUT, "-load_grow_factor %g must be >= 1", (double)st->grow);
+    PetscCheck(st->shrink_its >= 0, comm, PETSC_ERR_USER_INPUT, "-load_shrink_its %" PetscInt_FMT " must be >= 0", st->shrink_its);
+    PetscCheck(st->shrink > 0 && st->shrink <= 1, comm, PETSC_ERR_USER_INPUT, "-load_shrink_factor %g must lie in (0, 1]", (double)st->shrink);
     PetscCheck(st->max_cuts >= 0, comm, PETSC_ERR_USER_INPUT, "-load_max_cuts %" PetscInt_FMT " must be >= 0", st->max_cuts);
     PetscCheck(st->max_steps >= 1, comm, PETSC_ERR_USER_INPUT, "-load_max_steps %" PetscInt_FMT " must be >= 1", st->max_steps);
     PetscCheck(st->stall_its >= 0 && st->stall_its < 256, comm, PETSC_ERR_USER_INPUT, "-newton_stall_its %" PetscInt_FMT " must lie in [0, 255]", st->stall_its);
@@ -655,9 +661,12 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       if (st->kry_on) PetscCall(PetscSNPrintf(kline, sizeof(kline), "  krylov %" PetscInt_FMT " (most %" PetscInt_FMT ")", st->kry_sum, st->kry_max));
       PetscCall(PetscPrintf(pb->comm, "step %4" PetscInt_FMT "  time %.6f  its %2" PetscInt_FMT "%s  |R| %.3e  elapsed %.2f s%s  stage %s\n", step, (double)lam_c, its, kline, (double)rhist[PetscMax(nres - 1, 0)], t1 - t0, cline, sg->name));
     }
-    /* growth: on the Newton iterations of the hardest solve of the step (all of them without
-       augmentation) */
+    /* growth and shrinking: on the Newton iterations of the hardest solve of the step (all of
+       them without augmentation). A step that converged only after many iterations shrinks the
+       next one: growing back to the increment that failed makes a phase that needs smaller
+       steps alternate hard steps and cuts (doc/design.md, Load stepping) */
     if (its_max <= st->grow_its) dl = PetscMin(dl * st->grow, sg->dt_max);
+    else if (st->shrink_its > 0 && its_max > st->shrink_its) dl = PetscMax(dl * st->shrink, sg->dt_min);
     if (res->checkpoint_interval > 0 && (step % res->checkpoint_interval == 0 || lam_c >= T - tol)) {
       ci.stage      = stage;
       ci.step       = step;
