@@ -22,6 +22,7 @@
 #define MAT_ERR_JACOBIAN 1  /* det F <= 0 */
 #define MAT_ERR_RETURNMAP 2 /* the local return map (or any local iteration) did not converge */
 #define MAT_ERR_CUTBACK 3   /* the material asks for a smaller increment (a user material's PNEWDT < 1) */
+#define MAT_ERR_NAN 4       /* the material returned NaN or Inf (a user material's STRESS or DDSDDE) */
 
 typedef struct _p_Material *Material;
 
@@ -39,6 +40,14 @@ typedef struct {
   void (*history_init)(const void *ctx, double *h);
   /* equivalent plastic strain of a history, for output */
   double (*plastic_strain)(const void *ctx, const double *h);
+  /* optional (NULL for the built-in models): the material point of the next calls of update, for
+     a model that passes it on or reports it (a user material's NOEL and NPT): noel >= 0 sets the
+     element (its id in the mesh file; the assembly, before each element), npt >= 1 the
+     integration point (1..nqp in the element's order; the element kernel, before each update);
+     a negative value leaves that one as it was */
+  void (*set_point)(const void *ctx, int noel, int npt);
+  /* optional: the integration point of the last update that failed with MAT_ERR_NAN, 0 if none */
+  int (*failed_point)(const void *ctx);
 } MaterialKernel;
 
 /* add a type to the registry (create sets the object's kernel and operations) */

@@ -44,13 +44,16 @@ typedef struct {
    history h, whether STATEV(ep_statev) grew (plastic), and when dtau is not NULL
    d tau_ij / d F_kL built from DDSDDE (doc/umat.md). Returns MAT_OK, MAT_ERR_JACOBIAN
    (det F <= 0 or det of the increment <= 0), MAT_ERR_CUTBACK (the UMAT set PNEWDT < 1) or
-   MAT_ERR_RETURNMAP (NaN or Inf in the returned STRESS or DDSDDE); on error tau, dtau = 0,
-   h = hn. */
+   MAT_ERR_NAN (NaN or Inf in the returned STRESS or DDSDDE); on error tau, dtau = 0, h = hn.
+   NOEL and NPT: those of the kernel's last set_point (1 and 1 if none). */
 int    UmatUpdate(const UmatParams *p, const double F[9], const double *hn, double tau[9], double *dtau, double *h, int *plastic);
 /* zero STATEV, stress and strain; F = I */
 void   UmatHistoryInit(const UmatParams *p, double *h);
 /* the PNEWDT of the last call on this process that returned MAT_ERR_CUTBACK (for the message) */
 double UmatLastPnewdt(void);
+/* the last call on this process that returned MAT_ERR_NAN: 1 (STRESS) or 2 (DDSDDE), 0 if none;
+   its NOEL and NPT (either pointer may be NULL) */
+int UmatLastNaN(int *noel, int *npt);
 /* the MaterialKernel on the parameters p (kept by pointer: p must outlive k) */
 void   UmatKernelInit(const UmatParams *p, MaterialKernel *k);
 #endif

@@ -53,6 +53,7 @@ typedef struct {
   PetscInt  ndomain_err;   /* failed element or node evaluations in the last assembly   */
   PetscInt  bad_cell_id;   /* source id of the first failing element, for messages      */
   PetscInt  bad_status;
+  PetscInt  bad_point;     /* its integration point (1..nqp) where the material names it, else 0 */
   PetscBool cutback;       /* an element's material asked for a smaller increment (a UMAT's PNEWDT
                               < 1) since the flag was last cleared: the step is cut, not searched */
 

@@ -91,7 +91,7 @@ static double tangent_fd_error(const Hex8EASOptions *eo, const MaterialKernel *m
 static void TestKernels(void)
 {
   J2Params       mp;
-  MaterialKernel mk, neo;
+  MaterialKernel mk, neo = {0};
   NeoParams      np  = {1000, 1500};
   Hex8EASOptions eo  = {20, 1e-10};
   double         X[8][3], u[8][3], hn[NHE], h[NHE], fe[24];

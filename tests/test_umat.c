@@ -7,7 +7,8 @@
 
    Built with -DUMAT_TEST_LIBRARY (bin/umat_ctest.so, for tests/test_umat.sh) only the C UMATs
    are compiled: umat_hypo_, umat_cut_ (PNEWDT = 0.5 on its first call with a nonzero strain
-   increment in a process, then as umat_hypo_) and umat_nan_ (a NaN stress for any nonzero strain increment).
+   increment in a process, then as umat_hypo_) and umat_nan_ (a NaN stress for any nonzero strain
+   increment; with PROPS(3:4) = NOEL, NPT only at that element and integration point).
    PROPS of the C UMATs: E, nu. */
 #define _POSIX_C_SOURCE 199309L
 #include <math.h>
@@ -66,7 +67,7 @@ void umat_nan_(UMAT_ARGS)
   umat_hypo_(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, stran, dstran, time, dtime, temp, dtemp, predef, dpred, cmname, ndi, nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, celent, dfgrd0, dfgrd1, noel, npt, layer, kspt, kstep, kinc, cmname_len);
   double s = 0;
   for (int i = 0; i < 6; i++) s += fabs(dstran[i]);
-  if (s > 0) stress[0] = NAN;
+  if (s > 0 && (*nprops < 4 || (*noel == (int)props[2] && *npt == (int)props[3]))) stress[0] = NAN;
 }
 
 #ifndef UMAT_TEST_LIBRARY
@@ -225,7 +226,25 @@ static void test_status(void)
   TU_CHECK(st1 == MAT_ERR_CUTBACK && UmatLastPnewdt() == 0.5 && ok1 && st2 == MAT_OK, "PNEWDT 0.5: MAT_ERR_CUTBACK (status %d, PNEWDT %g, tau = 0, h = hn), the next call MAT_OK (%d)", st1, UmatLastPnewdt(), st2);
   p.fn    = umat_nan_;
   int st3 = mk.update(mk.ctx, F, h0, tau, dtau, h1, &pl);
-  TU_CHECK(st3 == MAT_ERR_RETURNMAP && fnorm(tau, 9) == 0 && !memcmp(h0, h1, sizeof(h0)), "NaN in the returned stress: MAT_ERR_RETURNMAP (status %d)", st3);
+  TU_CHECK(st3 == MAT_ERR_NAN && fnorm(tau, 9) == 0 && !memcmp(h0, h1, sizeof(h0)), "NaN in the returned stress: MAT_ERR_NAN (status %d)", st3);
+  /* NOEL and NPT reach the UMAT (umat_nan_ with PROPS(3:4) = 17, 5 fails at that point only) and
+     the failing point is recorded */
+  {
+    int noel = -1, npt = -1, what, st5, st6, st7;
+    p.nprops   = 4;
+    p.props[2] = 17;
+    p.props[3] = 5;
+    mk.set_point(mk.ctx, 17, 4);
+    st5 = mk.update(mk.ctx, F, h0, tau, dtau, h1, &pl);
+    mk.set_point(mk.ctx, 16, 5);
+    st6 = mk.update(mk.ctx, F, h0, tau, dtau, h1, &pl);
+    mk.set_point(mk.ctx, 17, -1); /* the element only: the point stays 5 */
+    st7  = mk.update(mk.ctx, F, h0, tau, dtau, h1, &pl);
+    what = UmatLastNaN(&noel, &npt);
+    TU_CHECK(st5 == MAT_OK && st6 == MAT_OK && st7 == MAT_ERR_NAN && what == 1 && noel == 17 && npt == 5 && mk.failed_point(mk.ctx) == 5,
+             "NOEL, NPT passed to the UMAT: a NaN at element 17, point 5 only (statuses %d %d %d), recorded as STRESS (%d) at %d, %d", st5, st6, st7, what, noel, npt);
+    p.nprops = 2;
+  }
   const double Fbad[9] = {1, 0, 0, 0, 1, 0, 0, 0, -0.5};
   p.fn    = umat_hypo_;
   int st4 = mk.update(mk.ctx, Fbad, h0, tau, dtau, h1, &pl);

@@ -105,8 +105,15 @@ bad() { # bad NAME EXPECT ARGS...: a one-line "atrito: error" containing EXPECT,
 SMALL="-options_file cases/tension_bar.opts -box_cells 2,1,1 -load_steps 2 -output_interval 0"
 bad nolib "-material_umat bin/no_such.so: cannot load the library" $SMALL -material_type umat -material_umat bin/no_such.so
 bad nosym "-material_umat_symbol vumat_: not found in bin/umat_j2.so" $SMALL $UJ2 -material_umat_symbol vumat_
-bad hill_nstatev "did not converge" $SMALL $UH -material_umat_nstatev 7 -material_umat_props $HP,1 -load_max_cuts 2
-bad nan "did not converge" $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_nan_ -material_umat_props 69004,0.3 -load_max_cuts 2
+bad hill_nstatev "NaN or Inf in the material's stress or tangent" $SMALL $UH -material_umat_nstatev 7 -material_umat_props $HP,1 -load_max_cuts 2
+# a NaN stress at one integration point of one element (umat_nan_'s PROPS(3:4) = NOEL, NPT): the
+# message names both, at 1 and 2 ranks (the element on the second rank)
+NANMSG="NaN or Inf in the material's stress or tangent (a user material's STRESS or DDSDDE; element id 2, integration point 7)"
+bad nan "$NANMSG" $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_nan_ -material_umat_props 69004,0.3,2,7 -load_max_cuts 2
+atrito_rc 2 nan_np2 $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_nan_ -material_umat_props 69004,0.3,2,7 -load_max_cuts 2
+[ "$RC" -ne 0 ] && [ "$RC" -lt 124 ] && [ "$(grep -c '^atrito: error' "$OUT/nan_np2.log")" -eq 1 ] && grep -qF -- "$NANMSG" "$OUT/nan_np2.log" &&
+  ok "nan at np=2: one error line naming element 2, integration point 7" ||
+  { not_ok "nan at np=2 (exit $RC)"; tail -n 3 "$OUT/nan_np2.log" | indent; }
 # PNEWDT < 1: the material's MAT_ERR_CUTBACK fails the step at once and it is retried smaller
 atrito 1 cut $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_cut_ -material_umat_props 69004,0.3 &&
   { d=$(grep -m1 '^done:' "$OUT/cut.log")

@@ -205,8 +205,9 @@ static inline __attribute__((always_inline)) int hex8_element_impl(const Hex8Opt
     if (fbar) alpha = cbrt(J0 / J);
     for (int k = 0; k < 9; k++) Fb[k] = alpha * F[k];
 
-    int       plastic = 0;
-    const int st      = mat->update(mat->ctx, Fb, hn + (size_t)q * nh, tau, tangent ? dtau : NULL, h + (size_t)q * nh, &plastic);
+    int plastic = 0;
+    if (mat->set_point) mat->set_point(mat->ctx, -1, q + 1);
+    const int st = mat->update(mat->ctx, Fb, hn + (size_t)q * nh, tau, tangent ? dtau : NULL, h + (size_t)q * nh, &plastic);
     if (st != MAT_OK) {
       if (tangent) memset(ke, 0, 24 * 24 * sizeof(double));
       memset(fe, 0, 24 * sizeof(double));

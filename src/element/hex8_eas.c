@@ -104,8 +104,9 @@ static int eas_eval(const MaterialKernel *mat, const EasGeom *g, const double d[
     if (!(J > 0)) return MAT_ERR_JACOBIAN;
     for (int a = 0; a < NF; a++)
       for (int j = 0; j < 3; j++) gs[a][j] = D[a][0] * Finv[j] + D[a][1] * Finv[3 + j] + D[a][2] * Finv[6 + j];
-    int       plastic = 0;
-    const int st      = mat->update(mat->ctx, F, hn + (size_t)q * nh, tau, K ? dtau : NULL, h + (size_t)q * nh, &plastic);
+    int plastic = 0;
+    if (mat->set_point) mat->set_point(mat->ctx, -1, q + 1);
+    const int st = mat->update(mat->ctx, F, hn + (size_t)q * nh, tau, K ? dtau : NULL, h + (size_t)q * nh, &plastic);
     if (st != MAT_OK) return st;
     nplastic += plastic;
     const double w = g->w[q];

@@ -573,6 +573,8 @@ void Hill48KernelInit(const HillParams *hp, MaterialKernel *k)
   k->update         = Hill48KernelUpdate;
   k->history_init   = Hill48KernelHistoryInit;
   k->plastic_strain = Hill48KernelPlasticStrain;
+  k->set_point      = NULL;
+  k->failed_point   = NULL;
 }
 
 /* ------------------------------------------------------------------------------------------ */

@@ -303,6 +303,8 @@ void J2KernelInit(const J2Params *mp, MaterialKernel *k)
   k->update         = J2KernelUpdate;
   k->history_init   = J2KernelHistoryInit;
   k->plastic_strain = J2KernelPlasticStrain;
+  k->set_point      = NULL;
+  k->failed_point   = NULL;
 }
 
 /* ------------------------------------------------------------------------------------------ */

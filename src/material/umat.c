@@ -27,10 +27,12 @@
    Newton then converges linearly in its last digits.
 
    Not available through the kernel interface, passed as constants: TIME = (0, 0), DTIME = 1,
-   TEMP = DTEMP = 0, no predefined fields, COORDS = 0, CELENT = 1, NOEL = NPT = 1, LAYER = KSPT = 1,
-   KSTEP = KINC = 1; SSE, SPD, SCD start at 0 every call and are not kept.
+   TEMP = DTEMP = 0, no predefined fields, COORDS = 0, CELENT = 1, LAYER = KSPT = 1,
+   KSTEP = KINC = 1; SSE, SPD, SCD start at 0 every call and are not kept. NOEL and NPT are the
+   element's id and the integration point (1..8) set through the kernel's set_point (1 and 1 when
+   the caller sets none, e.g. a material driver).
    Status: PNEWDT < 1 -> MAT_ERR_CUTBACK (the value is kept for UmatLastPnewdt()); NaN or Inf in
-   STRESS or DDSDDE -> MAT_ERR_RETURNMAP (a local iteration that failed). */
+   STRESS or DDSDDE -> MAT_ERR_NAN (the point is kept for UmatLastNaN()). */
 #include <dlfcn.h>
 #include <math.h>
 #include <string.h>
@@ -41,11 +43,36 @@
 #include "tensor.h"
 
 static double LastPnewdt = 1.0;
+/* the material point of the next calls (set_point) and the last one that returned NaN or Inf:
+   one process evaluates its elements one at a time, so a process-wide record is that point */
+static int CurNoel = 1, CurNpt = 1, NanNoel = 0, NanNpt = 0, NanWhat = 0;
 
 double UmatLastPnewdt(void)
 {
   return LastPnewdt;
 }
+
+int UmatLastNaN(int *noel, int *npt)
+{
+  if (noel) *noel = NanNoel;
+  if (npt) *npt = NanNpt;
+  return NanWhat;
+}
+
+static void UmatKernelSetPoint(const void *ctx, int noel, int npt)
+{
+  (void)ctx;
+  if (noel >= 0) CurNoel = noel;
+  if (npt >= 1) CurNpt = npt;
+}
+
+static int UmatKernelFailedPoint(const void *ctx)
+{
+  (void)ctx;
+  return NanNpt;
+}
+
+static int nan_outputs(int what, int nh, const double *hn, double tau[9], double *dtau, double *h);
 
 /* (ln x - ln y)/(x - y) for x, y > 0, accurate for x ~ y (series in t = (x-y)/(x+y)) */
 static inline double dlog_ratio(double x, double y)
@@ -101,6 +128,17 @@ static void rotate(const double Q[9], const double A[9], double B[9])
   double T[9];
   t3_mul(Q, A, T);
   t3_mult(T, Q, B);
+}
+
+static int fail_outputs(int status, int nh, const double *hn, double tau[9], double *dtau, double *h);
+
+/* a NaN or Inf in STRESS (what = 1) or DDSDDE (2) at the current point: recorded, MAT_ERR_NAN */
+static int nan_outputs(int what, int nh, const double *hn, double tau[9], double *dtau, double *h)
+{
+  NanNoel = CurNoel;
+  NanNpt  = CurNpt;
+  NanWhat = what;
+  return fail_outputs(MAT_ERR_NAN, nh, hn, tau, dtau, h);
 }
 
 static int fail_outputs(int status, int nh, const double *hn, double tau[9], double *dtau, double *h)
@@ -170,7 +208,7 @@ int UmatUpdate(const UmatParams *p, const double F[9], const double *hn, double 
   {
     double       sse = 0, spd = 0, scd = 0, rpl = 0, ddsddt[6] = {0}, drplde[6] = {0}, drpldt = 0, pnewdt = 1.0;
     const double time[2] = {0, 0}, dtime = 1, temp = 0, dtemp = 0, predef[1] = {0}, dpred[1] = {0}, coords[3] = {0, 0, 0}, celent = 1;
-    const int    ndi = 3, nshr = 3, ntens = 6, nstatv = ns, nprops = p->nprops, noel = 1, npt = 1, layer = 1, kspt = 1, kstep = 1, kinc = 1;
+    const int    ndi = 3, nshr = 3, ntens = 6, nstatv = ns, nprops = p->nprops, noel = CurNoel, npt = CurNpt, layer = 1, kspt = 1, kstep = 1, kinc = 1;
     p->fn(stress, h, ddsdde, &sse, &spd, &scd, &rpl, ddsddt, drplde, &drpldt, stran, dstran, time, &dtime, &temp, &dtemp, predef, dpred, p->cmname, &ndi, &nshr, &ntens, &nstatv, p->props, &nprops, coords, drot, &pnewdt, &celent, dfgrd0, dfgrd1, &noel, &npt, &layer, &kspt, &kstep, &kinc, sizeof(p->cmname));
     if (pnewdt < 1.0) {
       LastPnewdt = pnewdt;
@@ -178,9 +216,9 @@ int UmatUpdate(const UmatParams *p, const double F[9], const double *hn, double 
     }
   }
   for (int i = 0; i < 6; i++)
-    if (!isfinite(stress[i])) return fail_outputs(MAT_ERR_RETURNMAP, nh, hn, tau, dtau, h);
+    if (!isfinite(stress[i])) return nan_outputs(1, nh, hn, tau, dtau, h);
   for (int i = 0; i < 36; i++)
-    if (!isfinite(ddsdde[i])) return fail_outputs(MAT_ERR_RETURNMAP, nh, hn, tau, dtau, h);
+    if (!isfinite(ddsdde[i])) return nan_outputs(2, nh, hn, tau, dtau, h);
 
   /* tau = J sigma_{n+1}; the new history */
   double sig[9];
@@ -274,6 +312,8 @@ void UmatKernelInit(const UmatParams *p, MaterialKernel *k)
   k->update         = UmatKernelUpdate;
   k->history_init   = UmatKernelHistoryInit;
   k->plastic_strain = UmatKernelPlasticStrain;
+  k->set_point      = UmatKernelSetPoint;
+  k->failed_point   = UmatKernelFailedPoint;
 }
 
 /* ------------------------------------------------------------------------------------------ */

@@ -340,6 +340,7 @@ static const char *FailureCause(const Stepper *st, const Problem *pb, SNESConver
   else if (pb->cutback) snprintf(buf, len, "the material asked for a smaller increment (a user material's PNEWDT < 1; element id %d)", (int)pb->bad_cell_id);
   else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_JACOBIAN_DOMAIN || pb->ndomain_err) {
     if (pb->bad_status == MAT_ERR_RETURNMAP) snprintf(buf, len, "the local return map did not converge (element id %d)", (int)pb->bad_cell_id);
+    else if (pb->bad_status == MAT_ERR_NAN) snprintf(buf, len, "NaN or Inf in the material's stress or tangent (a user material's STRESS or DDSDDE; element id %d, integration point %d)", (int)pb->bad_cell_id, (int)pb->bad_point);
     else if (pb->bad_status == ATRITO_ERR_PROJECTION) snprintf(buf, len, "the projection of a slave node on a tool failed");
     else snprintf(buf, len, "an element inverted (element id %d)", (int)pb->bad_cell_id);
   } else if (reason == SNES_DIVERGED_FNORM_NAN) snprintf(buf, len, "NaN or Inf in the residual");

@@ -85,7 +85,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
   const int            nen = ek->nen, nd = 3 * ek->nen;
   const PetscScalar   *u;
   PetscScalar         *f = NULL;
-  PetscInt             nfail = 0, badid = PETSC_MAX_INT, badst = 0, cfail = 0, ncut = 0;
+  PetscInt             nfail = 0, badid = PETSC_MAX_INT, badst = 0, badpt = 0, cfail = 0, ncut = 0;
   double               ke[MAX_EDOF * MAX_EDOF], kc[MAX_EDOF * MAX_EDOF], X[MAX_EDOF], ue[MAX_EDOF], fe[MAX_EDOF];
   PetscInt             gfail;
 
@@ -112,6 +112,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
         ue[3 * a + i] = PetscRealPart(u[o + i]);
       }
     }
+    if (pb->mk->set_point) pb->mk->set_point(pb->mk->ctx, (int)m->elem_id[e], -1);
     const int st = ek->kernel(ek->ctx, pb->mk, X, ue, pb->hist_c + (size_t)e * pb->nhc, fe, J ? ke : NULL, pb->hist_t + (size_t)e * pb->nhc, want_info ? &pb->einfo[e] : NULL);
     if (st != MAT_OK) {
       nfail++;
@@ -119,6 +120,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
       if (m->elem_id[e] < badid) {
         badid = m->elem_id[e];
         badst = st;
+        badpt = st == MAT_ERR_NAN && pb->mk->failed_point ? pb->mk->failed_point(pb->mk->ctx) : 0;
       }
       continue;
     }
@@ -155,12 +157,13 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
   PetscCall(MPIU_Allreduce(&nfail, &gfail, 1, MPIU_INT, MPI_SUM, pb->comm));
   pb->ndomain_err = gfail;
   if (gfail) {
-    PetscInt pair[2] = {badid, badst}, gmin;
+    PetscInt pair[3] = {badid, badst, badpt}, gmin;
     PetscCall(MPIU_Allreduce(&pair[0], &gmin, 1, MPIU_INT, MPI_MIN, pb->comm));
-    if (gmin != badid) pair[1] = 0;
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pair[1], 1, MPIU_INT, MPI_MAX, pb->comm));
+    if (gmin != badid) pair[1] = pair[2] = 0;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pair[1], 2, MPIU_INT, MPI_MAX, pb->comm));
     pb->bad_cell_id = gmin;
     pb->bad_status  = pair[1];
+    pb->bad_point   = pair[2];
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncut, 1, MPIU_INT, MPI_SUM, pb->comm));
     if (ncut) pb->cutback = PETSC_TRUE;
   }
