@@ -48,6 +48,11 @@ typedef struct {
   void (*set_point)(const void *ctx, int noel, int npt);
   /* optional: the integration point of the last update that failed with MAT_ERR_NAN, 0 if none */
   int (*failed_point)(const void *ctx);
+  /* optional: the increment of the next calls of update (the load stepping, before each attempt
+     of a step): the stage's time and the process time at its start, its length, the stage
+     (1-based) and the step number of the run (a user material's TIME(1), TIME(2), DTIME, KSTEP,
+     KINC) */
+  void (*set_increment)(const void *ctx, double time_stage, double time_total, double dtime, int kstep, int kinc);
 } MaterialKernel;
 
 /* add a type to the registry (create sets the object's kernel and operations) */

@@ -8,7 +8,8 @@
    Built with -DUMAT_TEST_LIBRARY (bin/umat_ctest.so, for tests/test_umat.sh) only the C UMATs
    are compiled: umat_hypo_, umat_cut_ (PNEWDT = 0.5 on its first call with a nonzero strain
    increment in a process, then as umat_hypo_) and umat_nan_ (a NaN stress for any nonzero strain
-   increment; with PROPS(3:4) = NOEL, NPT only at that element and integration point).
+   increment; with PROPS(3:4) = NOEL, NPT only at that element and integration point) and
+   umat_time_ (umat_hypo_ writing TIME, DTIME, KSTEP, KINC into STATEV(1..6)).
    PROPS of the C UMATs: E, nu. */
 #define _POSIX_C_SOURCE 199309L
 #include <math.h>
@@ -68,6 +69,21 @@ void umat_nan_(UMAT_ARGS)
   double s = 0;
   for (int i = 0; i < 6; i++) s += fabs(dstran[i]);
   if (s > 0 && (*nprops < 4 || (*noel == (int)props[2] && *npt == (int)props[3]))) stress[0] = NAN;
+}
+
+/* umat_hypo_, recording what it was told of the increment: STATEV(1..6) = TIME(1), TIME(2),
+   DTIME, KSTEP, KINC, TIME(2) + DTIME */
+void umat_time_(UMAT_ARGS);
+void umat_time_(UMAT_ARGS)
+{
+  umat_hypo_(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, stran, dstran, time, dtime, temp, dtemp, predef, dpred, cmname, ndi, nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, celent, dfgrd0, dfgrd1, noel, npt, layer, kspt, kstep, kinc, cmname_len);
+  if (*nstatv < 6) return;
+  statev[0] = time[0];
+  statev[1] = time[1];
+  statev[2] = *dtime;
+  statev[3] = *kstep;
+  statev[4] = *kinc;
+  statev[5] = time[1] + *dtime;
 }
 
 #ifndef UMAT_TEST_LIBRARY
@@ -244,6 +260,21 @@ static void test_status(void)
     TU_CHECK(st5 == MAT_OK && st6 == MAT_OK && st7 == MAT_ERR_NAN && what == 1 && noel == 17 && npt == 5 && mk.failed_point(mk.ctx) == 5,
              "NOEL, NPT passed to the UMAT: a NaN at element 17, point 5 only (statuses %d %d %d), recorded as STRESS (%d) at %d, %d", st5, st6, st7, what, noel, npt);
     p.nprops = 2;
+  }
+  /* the increment reaches the UMAT: TIME(1), TIME(2), DTIME, KSTEP, KINC */
+  {
+    UmatParams     q = hypo_params();
+    MaterialKernel qk;
+    double         g0[UMAT_NHIST(6)], g1[UMAT_NHIST(6)];
+    q.fn      = umat_time_;
+    q.nstatev = 6;
+    UmatKernelInit(&q, &qk);
+    UmatHistoryInit(&q, g0);
+    qk.set_increment(qk.ctx, 0.25, 1.25, 0.5, 2, 7);
+    int st = qk.update(qk.ctx, F, g0, tau, NULL, g1, &pl);
+    TU_CHECK(st == MAT_OK && g1[0] == 0.25 && g1[1] == 1.25 && g1[2] == 0.5 && g1[3] == 2 && g1[4] == 7 && g1[5] == 1.75,
+             "set_increment: the UMAT sees TIME = (%g, %g), DTIME %g, KSTEP %g, KINC %g (given 0.25, 1.25, 0.5, 2, 7)", g1[0], g1[1], g1[2], g1[3], g1[4]);
+    qk.set_increment(qk.ctx, 0, 0, 1, 1, 1); /* as a driver that sets none */
   }
   const double Fbad[9] = {1, 0, 0, 0, 1, 0, 0, 0, -0.5};
   p.fn    = umat_hypo_;

@@ -4,7 +4,8 @@
 # run; -snes_test_jacobian with the UMAT in the plastic regime; the Fortran Hill 48 UMAT
 # (bin/umat_hill48.so, from tests/umat_hill48.f) against the built-in hill48 in the same way, in
 # tension at 0, 45 and 90 degrees to the rolling direction; bad input (missing library, missing
-# symbol, a PNEWDT cut, a NaN stress) with the C UMATs of bin/umat_ctest.so.
+# symbol, a PNEWDT cut, a NaN stress at one named point) with the C UMATs of bin/umat_ctest.so;
+# TIME, DTIME, KSTEP, KINC as the UMAT receives them in a process of two stages.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -120,3 +121,23 @@ atrito 1 cut $SMALL -material_type umat -material_umat bin/umat_ctest.so -materi
     if echo "$d" | grep -q ' [1-9][0-9]* cuts\?,' && grep -q 'the material asked for a smaller increment (a user material.s PNEWDT < 1; element id [0-9]*); retrying' "$OUT/cut.log"; then
       ok "PNEWDT 0.5 once: the step was cut, named, and the run finished ($d)"
     else not_ok "PNEWDT 0.5 once: no cut or no message ($d)"; grep -m3 'retrying\|error' "$OUT/cut.log" | indent; fi; }
+# TIME, DTIME, KSTEP, KINC reach the UMAT from the load stepping: umat_time_ writes them into
+# STATEV(1..6), read back as the "plastic strain" field (-material_umat_statev_ep k, the element
+# mean) of a process of two stages (pull 0-1 in 2 steps, hold 1-3 in 4), at 1 and 2 ranks
+for k in 1 2 3 4 5 6; do
+  atrito 2 time$k $SMALL -output_interval 1 -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_time_ -material_umat_props 69004,0.3 -material_umat_nstatev 6 -material_umat_statev_ep $k -stage_names pull,hold -stage_pull_duration 1 -stage_pull_steps 2 -stage_hold_duration 2 -stage_hold_steps 4 -stage_hold_dt_max 0.5 -stage_pull_dt_max 0.5 || break
+done
+$PY - "$OUT" <<'PYEOF'
+import sys, h5py
+out, bad = sys.argv[1], []
+# step n (1..6) ends at time 0.5 n; its increment starts at t0 = 0.5 (n - 1); the stage starts at 0 or 1
+for k in range(1, 7):
+    try: f = h5py.File(f"{out}/time{k}/fields.h5", "r")
+    except OSError: bad.append(f"time{k}: no fields.h5"); continue
+    for n in range(1, 7):
+        t0 = 0.5 * (n - 1); stage = 1 if n <= 2 else 2
+        want = {1: t0 - (0 if stage == 1 else 1), 2: t0, 3: 0.5, 4: stage, 5: n, 6: t0 + 0.5}[k]
+        got = f[f"steps/{n:06d}/plastic_strain"][:]
+        if abs(got - want).max() > 1e-12: bad.append(f"STATEV({k}) at step {n}: {got.min():g}..{got.max():g}, expected {want:g}")
+print(("ok" if not bad else "not ok") + " - TIME(1), TIME(2), DTIME, KSTEP, KINC from the load stepping, two stages, np=2: " + ("as expected at all 6 steps" if not bad else "; ".join(bad[:4])))
+PYEOF

@@ -575,6 +575,7 @@ void Hill48KernelInit(const HillParams *hp, MaterialKernel *k)
   k->plastic_strain = Hill48KernelPlasticStrain;
   k->set_point      = NULL;
   k->failed_point   = NULL;
+  k->set_increment  = NULL;
 }
 
 /* ------------------------------------------------------------------------------------------ */

@@ -305,6 +305,7 @@ void J2KernelInit(const J2Params *mp, MaterialKernel *k)
   k->plastic_strain = J2KernelPlasticStrain;
   k->set_point      = NULL;
   k->failed_point   = NULL;
+  k->set_increment  = NULL;
 }
 
 /* ------------------------------------------------------------------------------------------ */

@@ -459,6 +459,8 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       if (st->kinks && next - lam_c - h < 0.01 * h) h = next - lam_c;
       lam_t = (next - lam_c - h < tol) ? next : lam_c + h;
       pb->lambda  = lam_t;
+      /* the increment, for a material that uses it (a user material's TIME, DTIME, KSTEP, KINC) */
+      if (pb->mk->set_increment) pb->mk->set_increment(pb->mk->ctx, (double)(lam_c - sg->t0), (double)lam_c, (double)(lam_t - lam_c), (int)stage + 1, (int)step + 1);
       pb->cutback = PETSC_FALSE; /* a request of the predictor's evaluations counts for this attempt */
       PetscCall(VecCopy(pb->Uc, pb->U));
       /* a fresh factorisation for every step, so that a step depends only on the committed state:
