@@ -21,6 +21,8 @@ void   hex8_shape(const double xi[3], double N[8], double dN[8][3]);
 double hex8_gradient(const double X[8][3], const double xi[3], double dNdX[8][3]);
 /* F = I + sum_a u_a (x) dN_a/dX */
 void   hex8_defgrad(const double u[8][3], const double dNdX[8][3], double F[9]);
+/* the current position sum_a N_a(xi_q) (X_a + u_a) of Gauss point q */
+void   hex8_gauss_position(const double X[8][3], const double u[8][3], int q, double x[3]);
 /* Smallest det(dX/dxi) over the 8 Gauss points and the 8 corners (element validity check);
    NaN when one of them is NaN */
 double hex8_min_jacobian(const double X[8][3]);

@@ -41,11 +41,12 @@ typedef struct {
   /* equivalent plastic strain of a history, for output */
   double (*plastic_strain)(const void *ctx, const double *h);
   /* optional (NULL for the built-in models): the material point of the next calls of update, for
-     a model that passes it on or reports it (a user material's NOEL and NPT): noel >= 0 sets the
-     element (its id in the mesh file; the assembly, before each element), npt >= 1 the
-     integration point (1..nqp in the element's order; the element kernel, before each update);
-     a negative value leaves that one as it was */
-  void (*set_point)(const void *ctx, int noel, int npt);
+     a model that passes it on or reports it (a user material's NOEL, NPT, COORDS, CELENT):
+     noel >= 0 sets the element (its id in the mesh file; the assembly, before each element),
+     npt >= 1 the integration point (1..nqp in the element's order), coords its current position
+     and celent the element's length (the element kernel, before each update); a negative noel or
+     npt, NULL coords or celent <= 0 leave that one as it was */
+  void (*set_point)(const void *ctx, int noel, int npt, const double coords[3], double celent);
   /* optional: the integration point of the last update that failed with MAT_ERR_NAN, 0 if none */
   int (*failed_point)(const void *ctx);
   /* optional: the increment of the next calls of update (the load stepping, before each attempt

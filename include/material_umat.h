@@ -45,7 +45,8 @@ typedef struct {
    d tau_ij / d F_kL built from DDSDDE (doc/umat.md). Returns MAT_OK, MAT_ERR_JACOBIAN
    (det F <= 0 or det of the increment <= 0), MAT_ERR_CUTBACK (the UMAT set PNEWDT < 1) or
    MAT_ERR_NAN (NaN or Inf in the returned STRESS or DDSDDE); on error tau, dtau = 0, h = hn.
-   NOEL and NPT: those of the kernel's last set_point (1 and 1 if none). */
+   NOEL, NPT, COORDS, CELENT: those of the kernel's last set_point (1, 1, 0, 1 if none); TIME,
+   DTIME, KSTEP, KINC: of its last set_increment ((0, 0), 1, 1, 1 if none). */
 int    UmatUpdate(const UmatParams *p, const double F[9], const double *hn, double tau[9], double *dtau, double *h, int *plastic);
 /* zero STATEV, stress and strain; F = I */
 void   UmatHistoryInit(const UmatParams *p, double *h);

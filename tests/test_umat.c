@@ -72,7 +72,7 @@ void umat_nan_(UMAT_ARGS)
 }
 
 /* umat_hypo_, recording what it was told of the increment: STATEV(1..6) = TIME(1), TIME(2),
-   DTIME, KSTEP, KINC, TIME(2) + DTIME */
+   DTIME, KSTEP, KINC, TIME(2) + DTIME, and of the point: STATEV(7..10) = COORDS, CELENT */
 void umat_time_(UMAT_ARGS);
 void umat_time_(UMAT_ARGS)
 {
@@ -84,6 +84,9 @@ void umat_time_(UMAT_ARGS)
   statev[3] = *kstep;
   statev[4] = *kinc;
   statev[5] = time[1] + *dtime;
+  if (*nstatv < 10) return;
+  for (int i = 0; i < 3; i++) statev[6 + i] = coords[i];
+  statev[9] = *celent;
 }
 
 #ifndef UMAT_TEST_LIBRARY
@@ -250,11 +253,11 @@ static void test_status(void)
     p.nprops   = 4;
     p.props[2] = 17;
     p.props[3] = 5;
-    mk.set_point(mk.ctx, 17, 4);
+    mk.set_point(mk.ctx, 17, 4, NULL, 0);
     st5 = mk.update(mk.ctx, F, h0, tau, dtau, h1, &pl);
-    mk.set_point(mk.ctx, 16, 5);
+    mk.set_point(mk.ctx, 16, 5, NULL, 0);
     st6 = mk.update(mk.ctx, F, h0, tau, dtau, h1, &pl);
-    mk.set_point(mk.ctx, 17, -1); /* the element only: the point stays 5 */
+    mk.set_point(mk.ctx, 17, -1, NULL, 0); /* the element only: the point stays 5 */
     st7  = mk.update(mk.ctx, F, h0, tau, dtau, h1, &pl);
     what = UmatLastNaN(&noel, &npt);
     TU_CHECK(st5 == MAT_OK && st6 == MAT_OK && st7 == MAT_ERR_NAN && what == 1 && noel == 17 && npt == 5 && mk.failed_point(mk.ctx) == 5,
@@ -265,16 +268,20 @@ static void test_status(void)
   {
     UmatParams     q = hypo_params();
     MaterialKernel qk;
-    double         g0[UMAT_NHIST(6)], g1[UMAT_NHIST(6)];
+    double         g0[UMAT_NHIST(10)], g1[UMAT_NHIST(10)];
+    const double   xq[3] = {1.5, -2, 0.25};
     q.fn      = umat_time_;
-    q.nstatev = 6;
+    q.nstatev = 10;
     UmatKernelInit(&q, &qk);
     UmatHistoryInit(&q, g0);
     qk.set_increment(qk.ctx, 0.25, 1.25, 0.5, 2, 7);
+    qk.set_point(qk.ctx, 3, 2, xq, 0.7);
     int st = qk.update(qk.ctx, F, g0, tau, NULL, g1, &pl);
     TU_CHECK(st == MAT_OK && g1[0] == 0.25 && g1[1] == 1.25 && g1[2] == 0.5 && g1[3] == 2 && g1[4] == 7 && g1[5] == 1.75,
              "set_increment: the UMAT sees TIME = (%g, %g), DTIME %g, KSTEP %g, KINC %g (given 0.25, 1.25, 0.5, 2, 7)", g1[0], g1[1], g1[2], g1[3], g1[4]);
+    TU_CHECK(st == MAT_OK && g1[6] == 1.5 && g1[7] == -2 && g1[8] == 0.25 && g1[9] == 0.7, "set_point: the UMAT sees COORDS = (%g, %g, %g), CELENT %g (given 1.5, -2, 0.25, 0.7)", g1[6], g1[7], g1[8], g1[9]);
     qk.set_increment(qk.ctx, 0, 0, 1, 1, 1); /* as a driver that sets none */
+    qk.set_point(qk.ctx, 1, 1, (const double[3]){0, 0, 0}, 1);
   }
   const double Fbad[9] = {1, 0, 0, 0, 1, 0, 0, 0, -0.5};
   p.fn    = umat_hypo_;

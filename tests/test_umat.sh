@@ -5,7 +5,7 @@
 # (bin/umat_hill48.so, from tests/umat_hill48.f) against the built-in hill48 in the same way, in
 # tension at 0, 45 and 90 degrees to the rolling direction; bad input (missing library, missing
 # symbol, a PNEWDT cut, a NaN stress at one named point) with the C UMATs of bin/umat_ctest.so;
-# TIME, DTIME, KSTEP, KINC as the UMAT receives them in a process of two stages.
+# TIME, DTIME, KSTEP, KINC, COORDS, CELENT as the UMAT receives them in a process of two stages.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -140,4 +140,30 @@ for k in range(1, 7):
         got = f[f"steps/{n:06d}/plastic_strain"][:]
         if abs(got - want).max() > 1e-12: bad.append(f"STATEV({k}) at step {n}: {got.min():g}..{got.max():g}, expected {want:g}")
 print(("ok" if not bad else "not ok") + " - TIME(1), TIME(2), DTIME, KSTEP, KINC from the load stepping, two stages, np=2: " + ("as expected at all 6 steps" if not bad else "; ".join(bad[:4])))
+PYEOF
+# COORDS and CELENT: STATEV(7..9) the integration point's current position, STATEV(10) the cube root
+# of the element's reference volume; their element means (the "plastic strain" field) against the
+# mean of the element's current nodes and its volume, for hex8 and hex8_eas, at 2 ranks
+for el in hex8 hex8_eas; do
+  for k in 7 8 9 10; do
+    atrito 2 pt_${el}_$k $SMALL -output_interval 1 -element_type $el -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_time_ -material_umat_props 69004,0.3 -material_umat_nstatev 10 -material_umat_statev_ep $k || break
+  done
+done
+$PY - "$OUT" <<'PYEOF'
+import sys, h5py, numpy as np
+out, bad, n = sys.argv[1], [], 0
+for el in ("hex8", "hex8_eas"):
+    for k in (7, 8, 9, 10):
+        try: f = h5py.File(f"{out}/pt_{el}_{k}/fields.h5", "r")
+        except OSError: bad.append(f"{el} STATEV({k}): no fields.h5"); continue
+        X, hexa = f["mesh/coordinates"][:], f["mesh/hexahedra"][:]
+        last = sorted(f["steps"].keys())[-1]
+        x = X + f[f"steps/{last}/displacement"][:]
+        got = f[f"steps/{last}/plastic_strain"][:]
+        if k < 10: want = x[hexa][:, :, k - 7].mean(axis=1)
+        else:
+            e = X[hexa]; want = np.cbrt(np.prod(e.max(axis=1) - e.min(axis=1), axis=1))  # box cells
+        d = np.abs(got - want).max() / np.abs(want).max(); n += 1
+        if d > 1e-12: bad.append(f"{el} STATEV({k}) {d:.1e} from the expected")
+print(("ok" if not bad and n == 8 else "not ok") + f" - COORDS and CELENT reach the UMAT (hex8 and hex8_eas, np=2): {n} fields " + ("as expected to 1e-12" if not bad else "; ".join(bad[:4])))
 PYEOF

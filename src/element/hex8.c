@@ -53,6 +53,15 @@ void hex8_shape(const double xi[3], double N[8], double dN[8][3])
   }
 }
 
+void hex8_gauss_position(const double X[8][3], const double u[8][3], int q, double x[3])
+{
+  double N[8];
+  hex8_shape(hex8_gauss[q], N, NULL);
+  x[0] = x[1] = x[2] = 0;
+  for (int a = 0; a < 8; a++)
+    for (int i = 0; i < 3; i++) x[i] += N[a] * (X[a][i] + u[a][i]);
+}
+
 double hex8_gradient(const double X[8][3], const double xi[3], double dNdX[8][3])
 {
   double dN[8][3], Jm[9] = {0}, Ji[9];
@@ -192,6 +201,12 @@ static inline __attribute__((always_inline)) int hex8_element_impl(const Hex8Opt
     if (info) memcpy(info->F0, F0, sizeof(F0));
   }
 
+  double celent = 0; /* the cube root of the reference volume, for a material that wants it */
+  if (mat->set_point) {
+    double dXv[3][8];
+    for (int q = 0; q < HEX8_NQP; q++) celent += ref_gradient(Xr, q, dXv);
+    celent = cbrt(celent);
+  }
   for (int q = 0; q < HEX8_NQP; q++) {
     double       dX[3][8], F[9], Finv[9], Fb[9], g[3][8];
     const double detX = ref_gradient(Xr, q, dX);
@@ -206,7 +221,11 @@ static inline __attribute__((always_inline)) int hex8_element_impl(const Hex8Opt
     for (int k = 0; k < 9; k++) Fb[k] = alpha * F[k];
 
     int plastic = 0;
-    if (mat->set_point) mat->set_point(mat->ctx, -1, q + 1);
+    if (mat->set_point) { /* a material that wants the point (a user material's NPT, COORDS, CELENT) */
+      double xq[3];
+      hex8_gauss_position(Xr, ur, q, xq);
+      mat->set_point(mat->ctx, -1, q + 1, xq, celent);
+    }
     const int st = mat->update(mat->ctx, Fb, hn + (size_t)q * nh, tau, tangent ? dtau : NULL, h + (size_t)q * nh, &plastic);
     if (st != MAT_OK) {
       if (tangent) memset(ke, 0, 24 * 24 * sizeof(double));

@@ -52,6 +52,7 @@ typedef struct {
   double D[HEX8_NQP][NF][3]; /* reference gradients dN_a/dX and G_k at the Gauss points */
   double w[HEX8_NQP];        /* det J (unit Gauss weights) */
   double len;                /* cube root of the volume */
+  const double (*X)[3];      /* the reference nodal coordinates */
 } EasGeom;
 
 static int eas_geometry(const double X[8][3], EasGeom *g)
@@ -78,6 +79,7 @@ static int eas_geometry(const double X[8][3], EasGeom *g)
     vol += j;
   }
   g->len = cbrt(vol);
+  g->X   = X;
   return MAT_OK;
 }
 
@@ -105,7 +107,11 @@ static int eas_eval(const MaterialKernel *mat, const EasGeom *g, const double d[
     for (int a = 0; a < NF; a++)
       for (int j = 0; j < 3; j++) gs[a][j] = D[a][0] * Finv[j] + D[a][1] * Finv[3 + j] + D[a][2] * Finv[6 + j];
     int plastic = 0;
-    if (mat->set_point) mat->set_point(mat->ctx, -1, q + 1);
+    if (mat->set_point) { /* a material that wants the point (a user material's NPT, COORDS, CELENT) */
+      double xq[3];
+      hex8_gauss_position(g->X, (const double(*)[3])d, q, xq);
+      mat->set_point(mat->ctx, -1, q + 1, xq, g->len);
+    }
     const int st = mat->update(mat->ctx, F, hn + (size_t)q * nh, tau, K ? dtau : NULL, h + (size_t)q * nh, &plastic);
     if (st != MAT_OK) return st;
     nplastic += plastic;

@@ -27,11 +27,12 @@
    Newton then converges linearly in its last digits.
 
    Not available through the kernel interface, passed as constants: TEMP = DTEMP = 0, no
-   predefined fields, COORDS = 0, CELENT = 1, LAYER = KSPT = 1; SSE, SPD, SCD start at 0 every
-   call and are not kept. NOEL and NPT are the element's id and the integration point (1..8) set
-   through the kernel's set_point, TIME, DTIME, KSTEP, KINC the increment set through its
-   set_increment (the load stepping); a caller that sets none (a material driver) gets NOEL = NPT
-   = 1, TIME = (0, 0), DTIME = 1, KSTEP = KINC = 1.
+   predefined fields, LAYER = KSPT = 1; SSE, SPD, SCD start at 0 every call and are not kept.
+   NOEL, NPT, COORDS and CELENT are the element's id, the integration point (1..8), its current
+   position and the element's length set through the kernel's set_point, TIME, DTIME, KSTEP,
+   KINC the increment set through its set_increment (the load stepping); a caller that sets none
+   (a material driver) gets NOEL = NPT = 1, COORDS = 0, CELENT = 1, TIME = (0, 0), DTIME = 1,
+   KSTEP = KINC = 1.
    Status: PNEWDT < 1 -> MAT_ERR_CUTBACK (the value is kept for UmatLastPnewdt()); NaN or Inf in
    STRESS or DDSDDE -> MAT_ERR_NAN (the point is kept for UmatLastNaN()). */
 #include <dlfcn.h>
@@ -46,7 +47,8 @@
 static double LastPnewdt = 1.0;
 /* the material point of the next calls (set_point) and the last one that returned NaN or Inf:
    one process evaluates its elements one at a time, so a process-wide record is that point */
-static int CurNoel = 1, CurNpt = 1, NanNoel = 0, NanNpt = 0, NanWhat = 0;
+static int    CurNoel = 1, CurNpt = 1, NanNoel = 0, NanNpt = 0, NanWhat = 0;
+static double CurCoords[3] = {0, 0, 0}, CurCelent = 1;
 /* the increment of the next calls (set_increment) */
 static double CurTime[2] = {0, 0}, CurDtime = 1;
 static int    CurKstep = 1, CurKinc = 1;
@@ -63,11 +65,14 @@ int UmatLastNaN(int *noel, int *npt)
   return NanWhat;
 }
 
-static void UmatKernelSetPoint(const void *ctx, int noel, int npt)
+static void UmatKernelSetPoint(const void *ctx, int noel, int npt, const double coords[3], double celent)
 {
   (void)ctx;
   if (noel >= 0) CurNoel = noel;
   if (npt >= 1) CurNpt = npt;
+  if (coords)
+    for (int i = 0; i < 3; i++) CurCoords[i] = coords[i];
+  if (celent > 0) CurCelent = celent;
 }
 
 static void UmatKernelSetIncrement(const void *ctx, double time_stage, double time_total, double dtime, int kstep, int kinc)
@@ -221,7 +226,7 @@ int UmatUpdate(const UmatParams *p, const double F[9], const double *hn, double 
     for (int i = 0; i < ns; i++) h[i] = hn[i];
   {
     double       sse = 0, spd = 0, scd = 0, rpl = 0, ddsddt[6] = {0}, drplde[6] = {0}, drpldt = 0, pnewdt = 1.0;
-    const double time[2] = {CurTime[0], CurTime[1]}, dtime = CurDtime, temp = 0, dtemp = 0, predef[1] = {0}, dpred[1] = {0}, coords[3] = {0, 0, 0}, celent = 1;
+    const double time[2] = {CurTime[0], CurTime[1]}, dtime = CurDtime, temp = 0, dtemp = 0, predef[1] = {0}, dpred[1] = {0}, coords[3] = {CurCoords[0], CurCoords[1], CurCoords[2]}, celent = CurCelent;
     const int    ndi = 3, nshr = 3, ntens = 6, nstatv = ns, nprops = p->nprops, noel = CurNoel, npt = CurNpt, layer = 1, kspt = 1, kstep = CurKstep, kinc = CurKinc;
     p->fn(stress, h, ddsdde, &sse, &spd, &scd, &rpl, ddsddt, drplde, &drpldt, stran, dstran, time, &dtime, &temp, &dtemp, predef, dpred, p->cmname, &ndi, &nshr, &ntens, &nstatv, p->props, &nprops, coords, drot, &pnewdt, &celent, dfgrd0, dfgrd1, &noel, &npt, &layer, &kspt, &kstep, &kinc, sizeof(p->cmname));
     if (pnewdt < 1.0) {

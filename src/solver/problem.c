@@ -112,7 +112,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
         ue[3 * a + i] = PetscRealPart(u[o + i]);
       }
     }
-    if (pb->mk->set_point) pb->mk->set_point(pb->mk->ctx, (int)m->elem_id[e], -1);
+    if (pb->mk->set_point) pb->mk->set_point(pb->mk->ctx, (int)m->elem_id[e], -1, NULL, 0.0);
     const int st = ek->kernel(ek->ctx, pb->mk, X, ue, pb->hist_c + (size_t)e * pb->nhc, fe, J ? ke : NULL, pb->hist_t + (size_t)e * pb->nhc, want_info ? &pb->einfo[e] : NULL);
     if (st != MAT_OK) {
       nfail++;
