@@ -91,8 +91,6 @@ static int UmatKernelFailedPoint(const void *ctx)
   return NanNpt;
 }
 
-static int nan_outputs(int what, int nh, const double *hn, double tau[9], double *dtau, double *h);
-
 /* (ln x - ln y)/(x - y) for x, y > 0, accurate for x ~ y (series in t = (x-y)/(x+y)) */
 static inline double dlog_ratio(double x, double y)
 {
@@ -149,17 +147,6 @@ static void rotate(const double Q[9], const double A[9], double B[9])
   t3_mult(T, Q, B);
 }
 
-static int fail_outputs(int status, int nh, const double *hn, double tau[9], double *dtau, double *h);
-
-/* a NaN or Inf in STRESS (what = 1) or DDSDDE (2) at the current point: recorded, MAT_ERR_NAN */
-static int nan_outputs(int what, int nh, const double *hn, double tau[9], double *dtau, double *h)
-{
-  NanNoel = CurNoel;
-  NanNpt  = CurNpt;
-  NanWhat = what;
-  return fail_outputs(MAT_ERR_NAN, nh, hn, tau, dtau, h);
-}
-
 static int fail_outputs(int status, int nh, const double *hn, double tau[9], double *dtau, double *h)
 {
   for (int i = 0; i < 9; i++) tau[i] = 0.0;
@@ -168,6 +155,15 @@ static int fail_outputs(int status, int nh, const double *hn, double tau[9], dou
   if (h != hn)
     for (int i = 0; i < nh; i++) h[i] = hn[i];
   return status;
+}
+
+/* a NaN or Inf in STRESS (what = 1) or DDSDDE (2) at the current point: recorded, MAT_ERR_NAN */
+static int nan_outputs(int what, int nh, const double *hn, double tau[9], double *dtau, double *h)
+{
+  NanNoel = CurNoel;
+  NanNpt  = CurNpt;
+  NanWhat = what;
+  return fail_outputs(MAT_ERR_NAN, nh, hn, tau, dtau, h);
 }
 
 void UmatHistoryInit(const UmatParams *p, double *h)
