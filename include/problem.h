@@ -51,6 +51,8 @@ typedef struct {
   Vec       Uloc, Floc;    /* local work vectors                                        */
   PetscReal lambda;        /* load parameter at which the residual is evaluated         */
   PetscInt  ndomain_err;   /* failed element or node evaluations in the last assembly   */
+  PetscReal fsq;           /* sum over the local elements of |f_e|^2, the element force vectors of
+                              the last residual assembly (ProblemForceScale)                  */
   PetscInt  bad_cell_id;   /* source id of the first failing element, for messages      */
   PetscInt  bad_status;
   PetscInt  bad_point;     /* its integration point (1..nqp) where the material names it, else 0 */
@@ -82,6 +84,9 @@ PetscErrorCode ProblemFormFunction(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode ProblemFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 /* Uloc = U with the boundary values at lambda */
 PetscErrorCode ProblemLocalWithBC(Problem *pb, Vec U, PetscReal lambda);
+/* the scale of the internal forces at the last residual assembly: sqrt(sum_e |f_e|^2) over the
+   elements' force vectors before assembly (collective) */
+PetscErrorCode ProblemForceScale(Problem *pb, PetscReal *F);
 /* the tool unknowns of a global vector (ntu values, the same on every rank; collective), and back
    (the owner writes them) */
 PetscErrorCode ProblemGetToolValues(Problem *pb, Vec X, PetscReal *d);

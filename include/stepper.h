@@ -26,6 +26,8 @@ typedef struct {
   PetscReal dl_prev2;      /* (0: none yet, e.g. after a restart: the step extrapolates linearly)  */
   PetscInt  stall_its;     /* Newton has stalled when |R| did not fall below stall_factor times */
   PetscReal stall_factor;  /* its value stall_its iterations earlier (0: no test)              */
+  PetscReal force_tol;     /* -newton_force_tol: Newton has converged also when |R| is below this
+                              fraction of the internal forces' scale (ProblemForceScale; 0: no) */
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */
   PetscInt  keep_contact;  /* the first Newton iteration holds the committed pressed nodes closed:
                               0 no, 1 on frictionless tools, 2 on every tool (-newton_keep_contact) */

@@ -22,6 +22,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->stall_its     = 0;
   st->ksp_target    = 0;
   st->stall_factor  = 0.9;
+  st->force_tol     = 0;
   st->max_steps     = 100000;
   st->predictor     = PREDICTOR_AUTO;
   st->chatter_check = PETSC_TRUE;
@@ -47,6 +48,8 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     PetscCall(PetscOptionsInt("-load_max_steps", "Largest number of converged steps", NULL, st->max_steps, &st->max_steps, NULL));
     PetscCall(PetscOptionsInt("-newton_stall_its", "Newton has stalled (the step fails at once) when |R| has not fallen below -newton_stall_factor times its value this many iterations earlier (0: never)", NULL, st->stall_its, &st->stall_its, NULL));
     PetscCall(PetscOptionsReal("-newton_stall_factor", "See -newton_stall_its", NULL, st->stall_factor, &st->stall_factor, NULL));
+    PetscCall(PetscOptionsReal("-newton_force_tol", "Newton has converged also when |R| is below this fraction of the internal forces' scale, sqrt(sum over the elements of |f_e|^2) (for steps whose initial residual is itself near equilibrium, where -snes_rtol asks for round-off; 0: -snes_rtol and -snes_atol only)", NULL, st->force_tol, &st->force_tol, NULL));
+    PetscCheck(st->force_tol >= 0 && st->force_tol < 1, comm, PETSC_ERR_USER_INPUT, "-newton_force_tol %g must lie in [0, 1)", (double)st->force_tol);
     {
       const char *preds[] = {"none", "extrapolate", "tangent", "auto", "Predictor", "PREDICTOR_", NULL};
       PetscInt    p       = (PetscInt)st->predictor;
@@ -258,6 +261,14 @@ static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, P
     PetscFunctionReturn(0);
   }
   if (it == 0) pb->stalled = PETSC_FALSE;
+  if (*reason == SNES_CONVERGED_ITERATING && it > 0 && pb->force_tol > 0) {
+    /* -newton_force_tol: |R| against the internal forces (the last residual assembly was at this
+       iterate: the line search evaluates the point it accepts last) rather than against |R_0|,
+       which is itself tiny when the step starts near equilibrium */
+    PetscReal F = 0;
+    PetscCall(ProblemForceScale(pb->pb, &F));
+    if (fnorm <= pb->force_tol * F) *reason = SNES_CONVERGED_FNORM_ABS;
+  }
   if (it > 0 && pb->kry_on) { /* the linear solve of the iteration just made */
     KSP      ksp;
     PetscInt kits;

@@ -101,6 +101,7 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
   if (residual) {
     PetscCall(VecZeroEntries(pb->Floc));
     PetscCall(VecGetArray(pb->Floc, &f));
+    pb->fsq = 0;
   }
   if (J && !pb->coo_v) PetscCall(MatZeroEntries(J));
   for (PetscInt e = 0; e < m->nc; e++) {
@@ -127,7 +128,10 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
     if (residual)
       for (int a = 0; a < nen; a++) {
         const PetscInt o = m->vloff[cv[a]];
-        for (int i = 0; i < 3; i++) f[o + i] += fe[3 * a + i];
+        for (int i = 0; i < 3; i++) {
+          f[o + i] += fe[3 * a + i];
+          pb->fsq += fe[3 * a + i] * fe[3 * a + i];
+        }
       }
     if (J) {
       const PetscInt       n = m->cndof[e];
@@ -226,6 +230,21 @@ PetscErrorCode ProblemFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx)
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   }
   PetscCall(PetscLogEventEnd(pb->ev_jacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The internal forces' scale for a force-relative Newton tolerance (-newton_force_tol): the
+   element force vectors of the last residual assembly before they are summed at the nodes. The
+   assembled residual is the nodes' imbalance, which vanishes at equilibrium whatever the stresses;
+   this sum does not: a sheet pressed by tools, or holding residual stresses after springback with
+   no load left, keeps it at the size of its stresses times its element faces. */
+PetscErrorCode ProblemForceScale(Problem *pb, PetscReal *F)
+{
+  PetscReal s = pb->fsq;
+
+  PetscFunctionBeginUser;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPIU_SUM, pb->comm));
+  *F = PetscSqrtReal(s);
   PetscFunctionReturn(0);
 }
 
