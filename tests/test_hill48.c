@@ -339,6 +339,37 @@ static void test_robust(void)
            "large steps (|F - R| up to 0.5, r 0.3/3.0/0.5 oblique, 2.8/0.4/1.9 perfectly plastic, 1.6/1.2/2.0): %d failures, %d plastic, |q(s) - sigma_y(ep)|/sigma_y <= %.1e (tolerance rtol q_tr)", nfail, npl, eyield);
 }
 
+/* a converged plastic state evaluated again with the same F (no increment: the committed state at
+   the start of a step, hex8_eas's local iteration started from its committed parameters): the
+   trial state lies on the yield surface to round-off, on either side; the update must accept it
+   with no further flow (the same stress and history), not report a failed return map */
+static void test_reevaluate(void)
+{
+  unsigned long long seed = 23;
+  const double       rd[3] = {1, 2, 0.5}, nd[3] = {-2, 1, 0};
+  const HillParams   hps[2] = {hill(swift(), 0.71, 0.58, 0.70, X1, Z1), hill(swift(), 0.3, 3.0, 0.5, rd, nd)};
+  int                nfail = 0, npl = 0, nyield = 0;
+  double             et = 0, eh = 0;
+  for (int b = 0; b < 2; b++)
+    for (int t = 0; t < 100; t++) {
+      double F[9], hn[J2_NHIST], h1[J2_NHIST], h2[J2_NHIST], t1[9], t2[9];
+      int    p1, p2;
+      J2HistoryInit(hn);
+      random_F(&seed, 0.1, F);
+      if (Hill48Update(&hps[b], F, hn, t1, NULL, h1, &p1) || !p1) continue;
+      npl++;
+      if (Hill48Update(&hps[b], F, h1, t2, NULL, h2, &p2)) {
+        nfail++;
+        continue;
+      }
+      nyield += p2;
+      et = fmax(et, rel(t2, t1, 9));
+      eh = fmax(eh, fabs(h2[J2_HIST_EP] - h1[J2_HIST_EP]) / h1[J2_HIST_EP]);
+    }
+  TU_CHECK(nfail == 0 && npl >= 150 && nyield > 0 && et < 1e-10 && eh < 1e-10,
+           "a converged plastic state evaluated again with no increment: %d failures of %d (%d on the yield surface's plastic side), stress %.1e and plastic strain %.1e from the first evaluation", nfail, npl, nyield, et, eh);
+}
+
 /* ---------- (3) tangent against central differences ---------- */
 static double tangent_fd_error(const HillParams *hp, const double F[9], const double hn[J2_NHIST], int *plastic)
 {
@@ -577,6 +608,7 @@ int main(int argc, char **argv)
   test_rvalues();
   test_tangent();
   test_robust();
+  test_reevaluate();
   test_objectivity();
   PetscCall(test_object());
   timing();

@@ -256,7 +256,7 @@ static double hill_q(const double p[6], const double ztr[6], double c, double la
   return sqrt(q2);
 }
 
-/* Solve r(lam) = q(lam) - sigma_y(ep_n + lam q(lam)) = 0 for lam > 0, given r(0) > 0.
+/* Solve r(lam) = q(lam) - sigma_y(ep_n + lam q(lam)) = 0 for lam >= 0, given r(0) > 0.
    The iteration variable is t = c pb lam / (1 + c pb lam) in [0, 1), c = 2G, with pb = the
    trial-weighted eigenvalue sum_i p_i^2 z_tr,i^2 / q_tr^2 of P (the initial slope of q): then
    z_i = z_tr,i (1 - t) / (1 - t + t p_i / pb), so that q and lam q are linear in t when the
@@ -298,7 +298,12 @@ static int hill_return_map(const HillParams *hp, const double p[6], const double
     }
     t = tn;
   }
-  if (!isfinite(Hp) || !(lam > 0.0)) return 1;
+  /* lam = 0: r(0) within the tolerance, the trial state on the yield surface (a converged plastic
+     state evaluated again with no increment: the committed state at the start of a step, or an
+     enhanced-strain iteration started from the committed parameters); the plastic branch with no
+     flow, as J2's return map. Refusing it failed the element there and sent hex8_eas's local
+     iteration to a cold start (doc/materials.md) */
+  if (!isfinite(Hp) || !(lam >= 0.0)) return 1;
   *lam_out = lam;
   *q_out   = q;
   *Hp_out  = Hp;
