@@ -3,8 +3,9 @@
 
 usage: numisheet93.py [--quick] [--variant final|gap] [--only uchannel|cup] [--max-steps N]
                       [--timeout S] [--skip-runs] [--selftest]
-Runs the cases cases/numisheet93_{uchannel,cup}_{coarse,fine}[ _gap].opts (--quick: the coarse meshes
-only), one at a time on one rank, then post-processes out/<case>/:
+Runs the cases cases/numisheet93_{uchannel,cup}_{coarse,fine}[ _gap].opts and, for the U-channel's
+mesh convergence, numisheet93_uchannel_xfine.opts (--quick: the coarse meshes only), one at a time on
+one rank, then post-processes out/<case>/:
   U-channel: punch force (full blank, both sides) against the stroke from contact.csv; the
     springback angles theta1, theta2 and the wall's radius rho from the final node positions
     (fields.h5), measured on the mid-surface of the section y = 0 (doc/forming.md, "Measurement");
@@ -547,6 +548,8 @@ def main():
     levels = ["coarse"] if a.quick else ["coarse", "fine"]
     suffix = "" if a.variant == "final" else "_gap"
     ucases = ["numisheet93_uchannel_%s%s" % (lv, suffix) for lv in levels]
+    if a.variant == "final" and not a.quick:
+        ucases.append("numisheet93_uchannel_xfine")  # the U-channel's mesh convergence (0.25 mm)
     ccases = ["numisheet93_cup_%s%s" % (lv, suffix) for lv in levels]
     if a.variant == "final":
         ccases += ["numisheet93_cup_al_%s" % lv for lv in levels]
