@@ -128,6 +128,19 @@ ok = a[-1]["time"] == b[-1]["time"] and d < 1e-5 and ib < ia
 print(("ok" if ok else "not ok") + f" - -newton_force_tol 1e-6: {ib} Newton iterations against {ia}, punch force at 40 mm {fb:.4f} against {fa:.4f} N ({d:.1e} relative, tolerance 1e-5)")
 PYEOF
 }
+# and on 2 ranks (the force scale summed over the ranks): the same steps and Newton iterations, the
+# punch force to 1e-9
+atrito 2 ftol6np2 -options_file $C -output_interval 0 -newton_force_tol 1e-6 && [ -f "$OUT/ftol6/contact.csv" ] && {
+  $PY - "$OUT/ftol6" "$OUT/ftol6np2" <<'PYEOF'
+import csv, re, sys
+def punch(d): return [r for r in csv.DictReader(open(f"{d}/contact.csv")) if r["tool"] == "punch"]
+def its(d): return re.search(r"done: (\d+) steps, (\d+) Newton", open(d + ".log").read()).groups()
+a, b = punch(sys.argv[1]), punch(sys.argv[2])
+d = max(abs(float(x["force"]) - float(y["force"])) / abs(float(x["force"])) for x, y in zip(a, b) if float(x["force"]) != 0)
+ok = len(a) == len(b) and all(x["time"] == y["time"] for x, y in zip(a, b)) and its(sys.argv[1]) == its(sys.argv[2]) and d < 1e-9
+print(("ok" if ok else "not ok") + f" - -newton_force_tol 1e-6 on 1 and 2 ranks: steps and Newton iterations {its(sys.argv[1])} and {its(sys.argv[2])}, punch force to {d:.1e} (tolerance 1e-9)")
+PYEOF
+}
 # what it is for: the coarse U-channel with a gap smoothing of 0.002 mm stalls in step 41 (the end of
 # the flange floats micrometres above the die at the smoothing band's edge, its force a near-double
 # root: Newton converges linearly to |R| 1e-5, 2e-8 of F, while -snes_rtol 1e-9 |R_0| asks 1.3e-6);
