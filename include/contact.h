@@ -60,6 +60,15 @@ PetscErrorCode ContactSetToolDrive(Contact c, PetscInt tool, PetscInt dir, ToolD
    (committed) to zero; it needs unknowns (ContactReserveToolUnknowns before the setup). The release
    is part of the tools' checkpoint. */
 PetscErrorCode ContactReleaseTool(Contact c, PetscInt tool, PetscReal t0, PetscReal t1);
+/* Release by nodal forces (-stage_<s>_release_mode nodes): the contact force each node carries
+   from the tool in the committed state becomes a dead load on it, falling linearly from its value
+   at t0 to zero at t1; the tool is removed at once (it pairs no node), its force-driven directions
+   held where they are. The nodes' loads are part of the contact checkpoint rows; the tool's result
+   (ContactGetToolResult) reports what they still exert. */
+PetscErrorCode ContactReleaseToolNodes(Contact c, PetscInt tool, PetscReal t0, PetscReal t1);
+/* a tool present or absent in the current stage (stage.h: an absent tool pairs no node; its nodes'
+   states become "no contact") */
+PetscErrorCode ContactSetToolPresent(Contact c, PetscInt t, PetscBool present);
 /* per direction: driven by force, and the target force at time t (0 where not driven) */
 PetscErrorCode ContactGetToolTarget(Contact c, PetscInt tool, PetscReal t, PetscBool driven[3], PetscReal F[3]);
 /* before ContactSetUp: give the tool its unknowns although no direction is force-driven yet */

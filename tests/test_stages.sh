@@ -6,7 +6,8 @@
 # run (also in the springback stage, where a condition holds dofs where the stage found them); a
 # tool removed while it carries a force is reported with that force; a tool released by force
 # (-stage_<s>_release) follows the linear release of its force, and a restart in the release
-# reproduces the run; the kink case
+# reproduces the run; so does a release by nodal forces (-stage_<s>_release_mode nodes), which
+# ends where the force-driven release ends; the kink case
 # cases/kink_retract.opts needs fewer cuts and iterations with -load_kinks than without; bad
 # stage and curve options are one-line errors naming the option.
 set -u
@@ -185,6 +186,49 @@ grep -q "restart from .*: step 6, time 1.5, stage release" "$OUT/relstop2.log" &
 for f in history.csv contact.csv; do cmp8r "$OUT/rel_np1/$f" "$OUT/relstop/$f" "restarted in the release (on 2 ranks) against the uninterrupted run, $f, 1e-7"; done
 counts_exact "$OUT/rel_np1/contact.csv" "$OUT/relstop/contact.csv" "restarted in the release (on 2 ranks) against the uninterrupted run, contact.csv"
 
+# 7b. release by nodal forces (-stage_release_release_mode nodes): the punch is removed at the
+# release's start and the contact force of each of its nodes becomes a load falling linearly to
+# zero; the punch's reported force follows the line exactly, the end state of the release (and
+# after the springback) is the force-driven release's (the unloading is elastic: the same state
+# to round-off), 1 and 2 ranks agree, a restart in the release reproduces the run, and the
+# Jacobian agrees with finite differences in the release's steps
+NOD="$REL -stage_release_release_mode nodes -output_interval 1"
+atrito 1 reltool_fields $REL -output_interval 1
+for np in 1 2; do atrito $np relnod_np$np $NOD; done
+grep -q "^stage release: tool punch removed, the forces of its 6 pressed nodes" "$OUT/relnod_np1.log" && ok "release by nodal forces announced: $(grep -o 'tool punch removed.*' "$OUT/relnod_np1.log")" || not_ok "no announcement of the release by nodal forces"
+grep -q "WARNING: stage springback removes tool" "$OUT/relnod_np1.log" && not_ok "the punch released by its nodal forces is reported as removed with a force" || ok "no removal warning after the release by nodal forces"
+$PY - "$OUT/relnod_np1" "$OUT/reltool_fields" <<'PYEOF'
+import csv, sys
+import numpy as np, h5py
+rows = list(csv.DictReader(open(sys.argv[1] + "/contact.csv")))
+f0 = [float(r["fz"]) for r in rows if r["stage"] == "press"][-1]
+rel = [(float(r["time"]), float(r["fz"]), int(r["active"])) for r in rows if r["stage"] == "release"]
+err = max(abs(fz - f0 * (2.0 - t)) for t, fz, _ in rel) / abs(f0)
+act = [a for t, _, a in rel if t < 2.0 - 1e-12]
+last = [float(r["force"]) for r in rows if r["stage"] == "springback"]
+good = f0 < 0 and len(rel) >= 4 and err < 1e-12 and act and all(a == 6 for a in act) and all(v == 0 for v in last)
+print(("ok - " if good else "not ok - ") + f"release by nodal forces: the punch's fz follows {f0:.6g} (1 - s) to 1e-12 (largest error {err:.2g} of it), its 6 nodes counted until the end, zero in springback")
+def fields(d):
+    f = h5py.File(d + "/fields.h5", "r")
+    return {float(f["steps"][k].attrs["time"]) if "time" in f["steps"][k].attrs else int(k): f["steps"][k]["displacement"][:] for k in f["steps"]}
+a, b = fields(sys.argv[1]), fields(sys.argv[2])
+ka, kb = sorted(a), sorted(b)
+good = ka == kb and len(ka) >= 3
+msg = []
+for k in (ka[-2], ka[-1]) if good else ():
+    d = np.abs(a[k] - b[k]).max() / np.abs(b[k]).max()
+    msg.append(f"{d:.2g}")
+    good = good and d < 1e-10
+print(("ok - " if good else "not ok - ") + f"release by nodal forces ends where the force-driven release ends: displacements at the release's end and after the springback within {', '.join(msg)} of the largest (bound 1e-10)")
+PYEOF
+for f in history.csv contact.csv; do cmp8 "$OUT/relnod_np1/$f" "$OUT/relnod_np2/$f" "release by nodal forces np=1 against np=2, $f, 1e-8"; done
+$MPI 1 $A $NOD -output_dir "$OUT/relnodstop" -checkpoint_interval 1 -load_max_steps 6 </dev/null >"$OUT/relnodstop1.log" 2>&1
+$MPI 2 $A $NOD -output_dir "$OUT/relnodstop" -restart "$OUT/relnodstop/checkpoint.h5" </dev/null >"$OUT/relnodstop2.log" 2>&1 || not_ok "restart in the release by nodal forces failed"
+grep -q "restart from .*: step 6, time 1.5, stage release" "$OUT/relnodstop2.log" && ok "restart from step 6, time 1.5, in the release by nodal forces" || not_ok "restart did not start in the release: $(grep -o 'restart from.*' "$OUT/relnodstop2.log")"
+for f in history.csv contact.csv; do cmp8 "$OUT/relnod_np1/$f" "$OUT/relnodstop/$f" "restarted in the release by nodal forces (on 2 ranks) against the uninterrupted run, $f, 1e-8"; done
+atrito_rc 1 relnod_jac $NOD -output_interval 0 -restart "$OUT/relnodstop/checkpoint.h5" -load_max_steps 8 -snes_test_jacobian
+pycheck snes_test_jacobian "$OUT/relnod_jac.log" 4 1e-6 "release by nodal forces, steps 7 and 8 (stopped there by -load_max_steps)"
+
 # 8. bad input: one line naming the option
 bad() { # bad EXPECTED NP ARGS...
   local expect=$1 np=$2; shift 2
@@ -206,4 +250,5 @@ bad "-tool_ball_amplitude: point 1 (1., nan.) is not finite" 2 -options_file cas
 bad "-tool_ball_path and -tool_ball_amplitude are exclusive" 1 -options_file cases/block_sphere.opts -tool_ball_amplitude 0,0,1,1
 bad "-stage_release_release: unknown tool 'die'" 1 $REL -stage_release_release die
 bad "-stage_springback_release: tool 'punch' is not present in the stage" 2 $REL -stage_springback_release punch
+bad "Unknown option both for -stage_release_release_mode" 2 $REL -stage_release_release_mode both
 bad "-stage_hold_tools: tool holder is removed at time 1. while a force of -1000. along z still drives it" 1 -options_file cases/forcetool_holder.opts -stage_names press,hold -stage_hold_tools die

@@ -12,6 +12,16 @@
 #include "util.h"
 #include "options.h"
 
+#define NREL 8 /* doubles per node of a release by nodal forces: force (3), tangential part (3), t0, t1 */
+
+/* the share of its nodal forces that a tool released by them still exerts at time lambda: 1 at the
+   release's start t0, linearly to 0 at its end t1 (w: a node's NREL doubles) */
+static PetscReal NodalReleaseShare(const PetscReal *w, PetscReal lambda)
+{
+  const PetscReal s = (w[7] - lambda) / (w[7] - w[6]);
+  return s > 1 ? 1 : (s > 0 ? s : 0);
+}
+
 /* The last pairing of a slave node: the tool and projection found for the position y at the load
    lambda. Pairing the node again at the same y and lambda (bit for bit) returns it unchanged: the
    residual, the Jacobian and the frame update of a Newton iteration see one node position. */
@@ -132,6 +142,11 @@ struct _p_Contact {
   PetscInt      tdof0;         /* global index of the first tool unknown                      */
   PetscBool     towner;        /* this rank owns the tool unknowns                            */
   PetscInt      gen;           /* changes whenever the values of the tool unknowns change     */
+  /* release by nodal forces (ContactReleaseToolNodes): per owned slave node the contact force it
+     carried from its tool when the release began (NREL doubles: force (3), its tangential part (3),
+     the release's start and end times), the tool (-1: none) */
+  PetscReal    *nrel;
+  PetscInt     *nrel_tool;
   PetscLogEvent ev_contact, ev_pairing;
 };
 
@@ -398,6 +413,40 @@ PetscErrorCode ContactReleaseTool(Contact c, PetscInt tool, PetscReal t0, PetscR
   tc->rel_t[1] = t1;
   for (int d = 0; d < 3; d++) tc->rel_f[d] = r.f[d];
   PetscCall(ReleaseDrive(c, tool));
+  PetscFunctionReturn(0);
+}
+
+/* Release by nodal forces: the force each node carries from the tool in the committed state is
+   kept as a dead load, scaled by NodalReleaseShare (1 now, 0 at t1); the tool is then removed
+   (ContactSetToolPresent), its force-driven directions held where they are. At t0 the body is in
+   equilibrium with those loads exactly as it was with the tool, so the release starts without a
+   jump; as they fall the body springs back with no contact law in the way (no stick/slip, no tool
+   whose force goes to zero). The tool no longer pairs: a node that would touch it again in the
+   release passes through it (the release suits tools that the springback moves away from). */
+PetscErrorCode ContactReleaseToolNodes(Contact c, PetscInt tool, PetscReal t0, PetscReal t1)
+{
+  ToolContact *tc;
+
+  PetscFunctionBeginUser;
+  PetscCheck(tool >= 0 && tool < c->ntools, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactReleaseToolNodes: tool %" PetscInt_FMT " of %" PetscInt_FMT, tool, c->ntools);
+  PetscCheck(t1 > t0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactReleaseToolNodes: tool %s released from time %g to %g", c->tools[tool].name, (double)t0, (double)t1);
+  tc = &c->tc[tool];
+  for (PetscInt i = 0; i < c->ns; i++) {
+    const ContactState *st = &c->cst_c[i];
+    PetscReal          *w  = c->nrel + NREL * i;
+    if (st->tool != tool || st->status == CONTACT_OPEN) continue;
+    for (int k = 0; k < 3; k++) {
+      w[k]     = st->f[k];
+      w[3 + k] = st->fT[k];
+    }
+    w[6]            = t0;
+    w[7]            = t1;
+    c->nrel_tool[i] = tool;
+  }
+  for (PetscInt d = 0; d < 3; d++)
+    if (tc->drive[d] == TOOL_DRIVE_FORCE) PetscCall(ContactSetToolDrive(c, tool, d, TOOL_DRIVE_DISPLACEMENT, NULL));
+  tc->release = PETSC_FALSE;
+  PetscCall(ContactSetToolPresent(c, tool, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -761,6 +810,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
   PetscCall(PetscMalloc1(contact->ns, &contact->pmemo));
   PetscCall(PetscCalloc2(contact->ns, &contact->cst_c, contact->ns, &contact->cst_t));
   PetscCall(PetscCalloc3(3 * contact->ns, &contact->lam, contact->ns, &contact->lam_tool, 3 * contact->ns, &contact->lam_r));
+  PetscCall(PetscCalloc2(NREL * contact->ns, &contact->nrel, contact->ns, &contact->nrel_tool));
   contact->ns = 0;
   for (PetscInt v = 0; v < m->nv; v++) {
     if (!(mark[v] && m->vowned[v])) continue;
@@ -775,6 +825,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     contact->cst_t[i]                           = contact->cst_c[i];
     contact->pmemo[i].tool                      = -2;
     contact->lam_tool[i]                        = -1;
+    contact->nrel_tool[i]                       = -1;
   }
   PetscCall(PetscFree(mark));
   PetscCall(PetscFree(tmark));
@@ -900,6 +951,7 @@ PetscErrorCode ContactDestroy(Contact *c)
     PetscCall(PetscFree(contact->pmemo));
     PetscCall(PetscFree2(contact->cst_c, contact->cst_t));
     PetscCall(PetscFree3(contact->lam, contact->lam_tool, contact->lam_r));
+    PetscCall(PetscFree2(contact->nrel, contact->nrel_tool));
     PetscCall(PetscFree2(contact->kn, contact->kt));
     PetscCall(PetscFree(contact->tmask));
   }
@@ -1227,6 +1279,10 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
   for (PetscInt i = 0; i < contact->ns; i++) {
     double         y[3], R[3], K[9];
     const PetscInt v = contact->slave[i];
+    if (f && contact->nrel_tool[i] >= 0) { /* a released tool's nodal force: a dead load, no tangent */
+      const PetscReal *w = contact->nrel + NREL * i, sh = NodalReleaseShare(w, lambda);
+      for (int k = 0; k < 3; k++) f[contact->mesh->vloff[v] + k] -= sh * w[k];
+    }
     NodePosition(contact, i, u, y);
     if (NodeEval(contact, i, y, lambda, R, J ? K : NULL, &contact->cst_t[i])) {
       nfail++;
@@ -1723,6 +1779,18 @@ PetscErrorCode ContactGetToolResult(Contact contact, PetscInt t, PetscReal lambd
   r->travel = r->shift[0] * r->dir[0] + r->shift[1] * r->dir[1] + r->shift[2] * r->dir[2];
   for (PetscInt i = 0; i < contact->ns; i++) {
     const ContactState *st = &contact->cst_c[i];
+    if (contact->nrel_tool[i] == t) { /* released by nodal forces: what they still exert */
+      const PetscReal *w = contact->nrel + NREL * i, sh = NodalReleaseShare(w, lambda);
+      if (sh > 0) {
+        loc[0] += sh * (w[0] * r->dir[0] + w[1] * r->dir[1] + w[2] * r->dir[2]);
+        for (int k = 0; k < 3; k++) {
+          loc[1 + k] += sh * w[k];
+          loc[4 + k] += sh * (w[k] - w[3 + k]);
+          loc[7 + k] += sh * w[3 + k];
+        }
+        loc[10] += 1;
+      }
+    }
     if (st->tool != t || st->status == CONTACT_OPEN) continue;
     loc[0] += st->f[0] * r->dir[0] + st->f[1] * r->dir[1] + st->f[2] * r->dir[2];
     for (int k = 0; k < 3; k++) {
@@ -1782,7 +1850,7 @@ PetscErrorCode ContactGetNodeFields(Contact contact, PetscReal *cg, PetscReal *c
   PetscFunctionReturn(0);
 }
 
-#define CKPT_NCS 28 /* doubles per vertex for the contact state (24 before the multipliers, 27 before the penalties' factor) */
+#define CKPT_NCS (28 + 1 + NREL) /* doubles per vertex for the contact state (24 before the multipliers, 27 before the penalties' factor, 28 before the release by nodal forces) */
 
 PetscInt ContactCheckpointWidth(void) { return CKPT_NCS; }
 
@@ -1792,8 +1860,11 @@ PetscErrorCode ContactCheckpointPack(Contact contact, PetscReal *rows)
   PetscCall(PetscArrayzero(rows, CKPT_NCS * contact->mesh->nvo));
   for (PetscInt i = 0; i < contact->ns; i++) {
     const ContactState *s = &contact->cst_c[i];
-    const PetscReal     v[CKPT_NCS] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip, s->lN, s->lT[0], s->lT[1], contact->kscale_c};
-    PetscCall(PetscArraycpy(rows + CKPT_NCS * contact->mesh->vrow[contact->slave[i]], v, CKPT_NCS));
+    const PetscReal     v[28] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip, s->lN, s->lT[0], s->lT[1], contact->kscale_c};
+    PetscReal          *row = rows + CKPT_NCS * contact->mesh->vrow[contact->slave[i]];
+    PetscCall(PetscArraycpy(row, v, 28));
+    row[28] = (PetscReal)contact->nrel_tool[i];
+    PetscCall(PetscArraycpy(row + 29, contact->nrel + NREL * i, NREL));
   }
   PetscFunctionReturn(0);
 }
@@ -1832,6 +1903,8 @@ PetscErrorCode ContactCheckpointUnpack(Contact contact, const PetscReal *rows, P
     s->lT[0] = d[25];
     s->lT[1] = d[26];
     kc       = PetscMax(kc, d[27]);
+    contact->nrel_tool[i] = (PetscInt)d[28];
+    PetscCall(PetscArraycpy(contact->nrel + NREL * i, d + 29, NREL));
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, contact->comm));
   /* the augmentation's penalty factor (the same in every slave node's row; a rank without slave

@@ -8,7 +8,7 @@
 #include <hdf5.h>
 #include "results.h"
 
-#define CKPT_VERSION 3 /* 2: the stage; 3: the augmented Lagrangian's kept penalty factor in the contact rows */
+#define CKPT_VERSION 4 /* 2: the stage; 3: the augmented Lagrangian's kept penalty factor in the contact rows; 4: the release by nodal forces in the contact rows */
 
 #define CheckH5(ret, ...) PetscCheck((ret) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, __VA_ARGS__)
 

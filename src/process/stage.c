@@ -97,6 +97,12 @@ PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_ste
       PetscCall(PetscSNPrintf(opt, sizeof(opt), "-stage_%s_release", s->name));
       ierr = NameList(PetscOptionsObject, "-release", "Tools released by force in the stage: driven by force in x, y, z, the target going linearly from the force at the stage's start to zero at its end (default: none)", opt, STAGE_MAX_TOOLS, s->release, &s->nrelease);
     }
+    if (!ierr) {
+      const char *const modes[] = {"tool", "nodes"};
+      PetscInt          mode    = STAGE_RELEASE_TOOL;
+      PetscCall(PetscOptionsEList("-release_mode", "How -stage_<s>_release releases its tools: tool (the tool driven by its falling force) or nodes (the tool removed at the stage's start, the contact force of each of its nodes a load falling linearly to zero)", NULL, modes, 2, modes[mode], &mode, NULL));
+      s->release_mode = mode;
+    }
     PetscOptionsEnd();
     PetscCall(ierr);
     PetscCheck(D > 0 && PetscIsNormalReal(D), comm, PETSC_ERR_USER_INPUT, "-stage_%s_duration %g must be > 0", s->name, (double)D);
@@ -149,7 +155,7 @@ PetscErrorCode StagesSetUp(Stages *sg, BCs *bcs, Contact contact)
       PetscCheck(found >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_release: unknown tool '%s' (not in -tool_names)", s->name, s->release[j]);
       PetscCheck(s->tool_on[found], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-stage_%s_release: tool '%s' is not present in the stage (-stage_%s_tools)", s->name, s->release[j], s->name);
       s->tool_release[found] = PETSC_TRUE;
-      PetscCall(ContactReserveToolUnknowns(contact, found));
+      if (s->release_mode == STAGE_RELEASE_TOOL) PetscCall(ContactReserveToolUnknowns(contact, found));
     }
     for (PetscInt b = 0; b < bcs->n; b++) s->bc_on[b] = s->nbcs < 0 ? PETSC_TRUE : PETSC_FALSE;
     for (PetscInt j = 0; j < s->nbcs; j++) {

@@ -190,6 +190,17 @@ static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool
       if (r.active > 0)
         PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WARNING: stage %s removes tool %s while it carries a force of %.6e (fx %.6e, fy %.6e, fz %.6e; %" PetscInt_FMT " nodes pressed): released at once in the stage's first step (a stage in which the tool retracts releases it gradually)\n", s->name, tl->name, sqrt(r.f[0] * r.f[0] + r.f[1] * r.f[1] + r.f[2] * r.f[2]), r.f[0], r.f[1], r.f[2], r.active));
     }
+    /* a release by nodal forces removes the tool and keeps its nodes' forces as loads (a restart
+       finds them in the checkpoint) */
+    if (s->tool_release[i] && s->release_mode == STAGE_RELEASE_NODES) {
+      if (!restart) {
+        ContactToolResult r;
+        PetscCall(ContactGetToolResult(st->contact, i, t, &r));
+        PetscCall(ContactReleaseToolNodes(st->contact, i, s->t0, s->t1));
+        if (announce) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stage %s: tool %s removed, the forces of its %" PetscInt_FMT " pressed nodes (fx %.6e, fy %.6e, fz %.6e) released from time %g to %g\n", s->name, tl->name, r.active, r.f[0], r.f[1], r.f[2], (double)s->t0, (double)s->t1));
+      } else PetscCall(ContactSetToolPresent(st->contact, i, PETSC_FALSE));
+      continue;
+    }
     PetscCall(ContactSetToolPresent(st->contact, i, s->tool_on[i]));
     /* a release starts from the force the tool exerts now (a restart finds it in the checkpoint) */
     if (!restart && s->tool_release[i]) {
