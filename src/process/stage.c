@@ -95,7 +95,7 @@ PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_ste
     }
     if (!ierr) {
       PetscCall(PetscSNPrintf(opt, sizeof(opt), "-stage_%s_release", s->name));
-      ierr = NameList(PetscOptionsObject, "-release", "Tools released by force in the stage: driven by force in x, y, z, the target going linearly from the force at the stage's start to zero at its end (default: none)", opt, STAGE_MAX_TOOLS, s->release, &s->nrelease);
+      ierr = NameList(PetscOptionsObject, "-release", "Tools released in the stage (default: none); with -stage_<s>_release_mode tool each is driven by force along the axes in which it carries force, the target going linearly from the force at the stage's start to zero at its end", opt, STAGE_MAX_TOOLS, s->release, &s->nrelease);
     }
     if (!ierr) {
       const char *const modes[] = {"tool", "nodes"};
