@@ -195,7 +195,7 @@ static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool
     if (s->tool_release[i] && s->release_mode == STAGE_RELEASE_NODES) {
       if (!restart) {
         ContactToolResult r;
-        PetscCall(ContactGetToolResult(st->contact, i, t, &r));
+        if (announce) PetscCall(ContactGetToolResult(st->contact, i, t, &r)); /* collective: announce is the same on every rank */
         PetscCall(ContactReleaseToolNodes(st->contact, i, s->t0, s->t1));
         if (announce) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stage %s: tool %s removed, the forces of its %" PetscInt_FMT " pressed nodes (fx %.6e, fy %.6e, fz %.6e) released from time %g to %g\n", s->name, tl->name, r.active, r.f[0], r.f[1], r.f[2], (double)s->t0, (double)s->t1));
       } else PetscCall(ContactSetToolPresent(st->contact, i, PETSC_FALSE));
