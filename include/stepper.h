@@ -12,6 +12,7 @@
 #include "problem.h"
 #include "results.h"
 #include "stage.h"
+#include "linesearch.h"
 
 typedef enum { PREDICTOR_NONE = 0, PREDICTOR_EXTRAPOLATE, PREDICTOR_TANGENT, PREDICTOR_AUTO } Predictor;
 
@@ -37,6 +38,7 @@ typedef struct {
                               fraction of the Newton tolerance (0: at -ksp_rtol only)           */
   PetscReal ksp_rtol0;     /* -ksp_rtol as set, restored after every Newton solve             */
   PetscReal newton_tol;    /* the Newton solve's tolerance max(atol, rtol |R_0|)               */
+  NewtonLineSearch nls;    /* -newton_linesearch_rise: the watchdog line search, or NULL       */
   /* the Newton monitor */
   Problem  *pb;
   PetscBool stalled;

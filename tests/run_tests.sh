@@ -48,6 +48,8 @@ run lu-np1          mpiexec -n 1 bin/test_lu
 run lu-np2          mpiexec -n 2 bin/test_lu
 run predictor-np1   mpiexec -n 1 bin/test_predictor
 run predictor-np2   mpiexec -n 2 bin/test_predictor
+run linesearch-np1  mpiexec -n 1 bin/test_linesearch
+run linesearch-np2  mpiexec -n 2 bin/test_linesearch
 run solver          bash tests/test_solver.sh
 run hill48-solver   bash tests/test_hill48.sh
 run contact         bash tests/test_contact.sh

@@ -6,6 +6,7 @@
 #include <string.h>
 #include "stepper.h"
 #include "options.h"
+#include "linesearch.h"
 
 PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
 {
@@ -85,6 +86,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     st->kink_predictor = kv[p];
   }
   PetscOptionsEnd();
+  PetscCall(NewtonLineSearchCreate(comm, &st->nls));
   {
     PetscInt steps = (PetscInt)(1.0 / st->dt0 + 0.5);
     PetscCall(StagesSetFromOptions(comm, &st->stages, steps, st->dt_max, st->dt_min));
@@ -207,6 +209,16 @@ static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool
       PetscCall(ContactReleaseTool(st->contact, i, s->t0, s->t1));
       if (announce) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stage %s: tool %s released by force from time %g to %g\n", s->name, tl->name, (double)s->t0, (double)s->t1));
     }
+  }
+  {
+    /* a stage without contact (no tool present): the watchdog line search (linesearch.h) */
+    PetscBool contact = PETSC_FALSE;
+    for (PetscInt i = 0; i < ContactNumTools(st->contact); i++) {
+      const Tool *tl;
+      PetscCall(ContactGetTool(st->contact, i, &tl));
+      if (!tl->absent) contact = PETSC_TRUE;
+    }
+    PetscCall(NewtonLineSearchSetActive(st->nls, st->pb->snes, contact ? PETSC_FALSE : PETSC_TRUE));
   }
   for (PetscInt b = 0; b < st->bcs->n; b++) {
     BC *bc = &st->bcs->bc[b];
@@ -706,11 +718,17 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(pb->comm, "done: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " cuts, %.2f s\n", step, total_its, total_cuts, t1 - t0));
   if (total_soft) PetscCall(PetscPrintf(pb->comm, "augmented Lagrangian: %" PetscInt_FMT " steps retried at softer penalties (-contact_augmented_soften)\n", total_soft));
+  if (st->nls) {
+    PetscInt relaxed, reverted, trials;
+    PetscCall(NewtonLineSearchGetCounts(st->nls, &relaxed, &reverted, &trials));
+    if (trials) PetscCall(PetscPrintf(pb->comm, "line search: %" PetscInt_FMT " residual evaluations, %" PetscInt_FMT " relaxed steps, %" PetscInt_FMT " of them reverted (-newton_linesearch_rise)\n", trials, relaxed, reverted));
+  }
 
   PetscCall(ResultsClose(res));
   PetscCall(VecDestroy(&R));
   PetscCall(VecDestroy(&W));
   PetscCall(VecDestroy(&st->Uhold));
   PetscCall(VecDestroy(&st->Uprev2));
+  PetscCall(NewtonLineSearchDestroy(&st->nls)); /* the SNES calls its line search no more */
   PetscFunctionReturn(0);
 }
