@@ -130,7 +130,7 @@ static PetscErrorCode Solve(Problem p, const PetscReal *x0, const char *rise, Pe
     PetscCall(PetscOptionsSetValue(NULL, "-newton_linesearch_rise", rise));
     PetscCall(NewtonLineSearchCreate(PETSC_COMM_WORLD, &nls));
     PetscCall(PetscOptionsClearValue(NULL, "-newton_linesearch_rise"));
-    PetscCall(NewtonLineSearchSetActive(nls, snes, PETSC_TRUE));
+    PetscCall(NewtonLineSearchSetStage(nls, snes, PETSC_FALSE, PETSC_TRUE)); /* a release by nodal forces */
   }
   PetscCall(VecGetArray(X, &x));
   for (PetscInt i = 0; i < n; i++) x[i] = x0[i];
@@ -198,6 +198,40 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsClearValue(NULL, "-newton_linesearch_rise"));
   snprintf(what, sizeof(what), "-newton_linesearch_rise 0.5 refused naming the option: %s", ErrMsg);
   Ok(ierr != 0 && strstr(ErrMsg, "-newton_linesearch_rise"), what);
+  /* where it applies: -newton_watchdog release (default) in a release by nodal forces without a
+     tool present only, contactfree in every stage without one, none nowhere */
+  {
+    const char *modes[3] = {"release", "contactfree", "none"};
+    const int   want[3][3] = {{1, 0, 0}, {1, 1, 0}, {0, 0, 0}}; /* (no contact, release), (no contact, no release), (contact, release) */
+    for (int m = 0; m < 3; m++) {
+      int got[3];
+      for (int k = 0; k < 3; k++) {
+        SNES               snes;
+        SNESLineSearch     ls;
+        SNESLineSearchType type;
+        PetscBool          shell;
+        PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
+        PetscCall(SNESGetLineSearch(snes, &ls));
+        PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBT));
+        PetscCall(PetscOptionsSetValue(NULL, "-newton_watchdog", modes[m]));
+        PetscCall(NewtonLineSearchCreate(PETSC_COMM_WORLD, &nls));
+        PetscCall(PetscOptionsClearValue(NULL, "-newton_watchdog"));
+        PetscCall(NewtonLineSearchSetStage(nls, snes, k == 2 ? PETSC_TRUE : PETSC_FALSE, k == 1 ? PETSC_FALSE : PETSC_TRUE));
+        PetscCall(SNESLineSearchGetType(ls, &type));
+        PetscCall(PetscStrcmp(type, SNESLINESEARCHSHELL, &shell));
+        got[k] = shell ? 1 : 0;
+        /* and back to PETSc's at a stage with contact */
+        PetscCall(NewtonLineSearchSetStage(nls, snes, PETSC_TRUE, PETSC_TRUE));
+        PetscCall(SNESLineSearchGetType(ls, &type));
+        PetscCall(PetscStrcmp(type, SNESLINESEARCHBT, &shell));
+        if (!shell) got[k] = -1;
+        PetscCall(NewtonLineSearchDestroy(&nls));
+        PetscCall(SNESDestroy(&snes));
+      }
+      snprintf(what, sizeof(what), "-newton_watchdog %s: used in a release without contact %d, a stage without contact %d, a release with contact %d; PETSc's bt back at a stage with contact", modes[m], got[0], got[1], got[2]);
+      Ok(got[0] == want[m][0] && got[1] == want[m][1] && got[2] == want[m][2], what);
+    }
+  }
   PetscCall(PetscFinalize());
   return nfail ? 1 : 0;
 }

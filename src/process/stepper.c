@@ -211,14 +211,14 @@ static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool
     }
   }
   {
-    /* a stage without contact (no tool present): the watchdog line search (linesearch.h) */
+    /* the watchdog line search in a release by nodal forces without contact (linesearch.h) */
     PetscBool contact = PETSC_FALSE;
     for (PetscInt i = 0; i < ContactNumTools(st->contact); i++) {
       const Tool *tl;
       PetscCall(ContactGetTool(st->contact, i, &tl));
       if (!tl->absent) contact = PETSC_TRUE;
     }
-    PetscCall(NewtonLineSearchSetActive(st->nls, st->pb->snes, contact ? PETSC_FALSE : PETSC_TRUE));
+    PetscCall(NewtonLineSearchSetStage(st->nls, st->pb->snes, contact, (s->nrelease > 0 && s->release_mode == STAGE_RELEASE_NODES) ? PETSC_TRUE : PETSC_FALSE));
   }
   for (PetscInt b = 0; b < st->bcs->n; b++) {
     BC *bc = &st->bcs->bc[b];
@@ -721,7 +721,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   if (st->nls) {
     PetscInt relaxed, reverted, trials;
     PetscCall(NewtonLineSearchGetCounts(st->nls, &relaxed, &reverted, &trials));
-    if (trials) PetscCall(PetscPrintf(pb->comm, "line search: %" PetscInt_FMT " residual evaluations, %" PetscInt_FMT " relaxed steps, %" PetscInt_FMT " of them reverted (-newton_linesearch_rise)\n", trials, relaxed, reverted));
+    if (trials) PetscCall(PetscPrintf(pb->comm, "line search: %" PetscInt_FMT " residual evaluations, %" PetscInt_FMT " relaxed steps, %" PetscInt_FMT " of them reverted (-newton_watchdog)\n", trials, relaxed, reverted));
   }
 
   PetscCall(ResultsClose(res));

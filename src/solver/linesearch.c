@@ -3,6 +3,7 @@
 #include "options.h"
 
 struct _n_NewtonLineSearch {
+  PetscInt  where;    /* -newton_watchdog: 1 release stages, 2 every stage without contact       */
   PetscBool active;   /* the SNES's line search is this one                                    */
   char      type[64]; /* the line search type it replaced                                      */
   PetscReal rise;     /* kappa: a full step may raise |R| up to this factor (a relaxed step)    */
@@ -15,20 +16,24 @@ struct _n_NewtonLineSearch {
 
 PetscErrorCode NewtonLineSearchCreate(MPI_Comm comm, NewtonLineSearch *nls)
 {
-  PetscReal rise = 1000, alpha = 1e-4;
-  PetscBool given;
+  PetscReal   rise = 1000, alpha = 1e-4;
+  PetscBool   given;
+  const char *where[] = {"none", "release", "contactfree", "NewtonWatchdog", "WATCHDOG_", NULL};
+  PetscInt    w       = 1;
 
   PetscFunctionBeginUser;
   *nls = NULL;
   PetscCall(PetscOptionsHasName(NULL, NULL, "-snes_linesearch_type", &given));
   PetscOptionsBegin(comm, NULL, "Newton's line search", NULL);
-  PetscCall(PetscOptionsReal("-newton_linesearch_rise", "Stages without contact (no tool present): a full Newton step that raises |R| by at most this factor is taken; the next iteration must bring |R| below that step's origin (Armijo), else the iterate returns to the origin and backtracks along the step (0: PETSc's line search of -snes_linesearch_type in every stage, as also when that option is given)", "include/linesearch.h", rise, &rise, NULL));
+  PetscCall(PetscOptionsEList("-newton_watchdog", "Where Newton uses the watchdog line search instead of PETSc's (-snes_linesearch_type, which when given is used everywhere): nowhere, in the stages that release their tools by nodal forces and have no tool present (an elastic unloading), or in every stage without a tool present", "include/linesearch.h", where, 3, where[w], &w, NULL));
+  PetscCall(PetscOptionsReal("-newton_linesearch_rise", "Watchdog line search: a full Newton step that raises |R| by at most this factor is taken; the next iteration must bring |R| below that step's origin (Armijo), else the iterate returns to the origin and backtracks along the step", "include/linesearch.h", rise, &rise, NULL));
   PetscCall(PetscOptionsReal("-newton_linesearch_alpha", "Watchdog line search: the sufficient decrease, a fraction of the slope of |R|^2/2 along the Newton step", "include/linesearch.h", alpha, &alpha, NULL));
   PetscOptionsEnd();
-  PetscCheck(rise == 0 || (rise >= 1 && PetscIsNormalReal(rise)), comm, PETSC_ERR_USER_INPUT, "-newton_linesearch_rise %g must be 0 (off) or at least 1", (double)rise);
+  PetscCheck(rise >= 1 && PetscIsNormalReal(rise), comm, PETSC_ERR_USER_INPUT, "-newton_linesearch_rise %g must be at least 1", (double)rise);
   PetscCheck(alpha > 0 && alpha < 0.5, comm, PETSC_ERR_USER_INPUT, "-newton_linesearch_alpha %g must lie in (0, 0.5)", (double)alpha);
-  if (rise == 0 || given) PetscFunctionReturn(0);
+  if (w == 0 || given) PetscFunctionReturn(0);
   PetscCall(PetscNew(nls));
+  (*nls)->where = w;
   (*nls)->rise  = rise;
   (*nls)->alpha = alpha;
   PetscFunctionReturn(0);
@@ -144,12 +149,15 @@ static PetscErrorCode NewtonLineSearchApply(SNESLineSearch ls, void *ctx)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode NewtonLineSearchSetActive(NewtonLineSearch nls, SNES snes, PetscBool on)
+PetscErrorCode NewtonLineSearchSetStage(NewtonLineSearch nls, SNES snes, PetscBool contact, PetscBool nodal_release)
 {
   SNESLineSearch ls;
+  PetscBool      on;
 
   PetscFunctionBeginUser;
-  if (!nls || on == nls->active) PetscFunctionReturn(0);
+  if (!nls) PetscFunctionReturn(0);
+  on = (!contact && (nls->where == 2 || nodal_release)) ? PETSC_TRUE : PETSC_FALSE;
+  if (on == nls->active) PetscFunctionReturn(0);
   PetscCall(SNESGetLineSearch(snes, &ls));
   if (on) {
     SNESLineSearchType type;
