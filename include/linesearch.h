@@ -17,9 +17,9 @@
 
    Why: Gauss points that the forming left on the yield surface unload in the springback; an
    iterate that leaves one of them just outside the surface gives it the elasto-plastic tangent,
-   and the full Newton step from there raises |R| 10 to 1000 times on its way into the quadratic
-   basin (one element switching between plastic and elastic). The backtracking search crept at
-   lambda = 0.01 to 0.1 for 20 to 25 iterations a step instead (the U-channel's release,
+   and the full Newton step from there raises |R| 10 to 130 times (measured) on its way into the
+   quadratic basin (one element switching between plastic and elastic). The backtracking search
+   crept at lambda = 0.01 to 0.1 for 16 to 25 iterations a step instead (the U-channel's release,
    doc/forming.md). The watchdog takes such a step and costs one iteration where the step leads
    nowhere. Why not everywhere: with contact it was measured worse (a full step that raises |R|
    there mostly changes the active set; the U-channel's draw: 1 800 more iterations, most relaxed
