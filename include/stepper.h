@@ -38,7 +38,7 @@ typedef struct {
                               fraction of the Newton tolerance (0: at -ksp_rtol only)           */
   PetscReal ksp_rtol0;     /* -ksp_rtol as set, restored after every Newton solve             */
   PetscReal newton_tol;    /* the Newton solve's tolerance max(atol, rtol |R_0|)               */
-  NewtonLineSearch nls;    /* -newton_linesearch_rise: the watchdog line search, or NULL       */
+  NewtonLineSearch nls;    /* -newton_watchdog: the watchdog line search, or NULL             */
   /* the Newton monitor */
   Problem  *pb;
   PetscBool stalled;

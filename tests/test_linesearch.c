@@ -82,6 +82,17 @@ static PetscErrorCode Jac(SNES snes, Vec X, Mat J, Mat P, void *ctx)
   PetscFunctionReturn(0);
 }
 
+/* a pre-check that must survive the switches of line search type */
+static PetscErrorCode PreCheck(SNESLineSearch ls, Vec X, Vec Y, PetscBool *changed, void *ctx)
+{
+  (void)ls;
+  (void)X;
+  (void)Y;
+  (void)ctx;
+  *changed = PETSC_FALSE;
+  return 0;
+}
+
 static PetscErrorCode Monitor(SNES snes, PetscInt it, PetscReal fnorm, void *ctx)
 {
   Ctx               *c = (Ctx *)ctx;
@@ -213,6 +224,7 @@ int main(int argc, char **argv)
         PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
         PetscCall(SNESGetLineSearch(snes, &ls));
         PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBT));
+        PetscCall(SNESLineSearchSetPreCheck(ls, PreCheck, NULL));
         PetscCall(PetscOptionsSetValue(NULL, "-newton_watchdog", modes[m]));
         PetscCall(NewtonLineSearchCreate(PETSC_COMM_WORLD, &nls));
         PetscCall(PetscOptionsClearValue(NULL, "-newton_watchdog"));
@@ -225,10 +237,15 @@ int main(int argc, char **argv)
         PetscCall(SNESLineSearchGetType(ls, &type));
         PetscCall(PetscStrcmp(type, SNESLINESEARCHBT, &shell));
         if (!shell) got[k] = -1;
+        {
+          PetscErrorCode (*pre)(SNESLineSearch, Vec, Vec, PetscBool *, void *) = NULL;
+          PetscCall(SNESLineSearchGetPreCheck(ls, &pre, NULL));
+          if (pre != PreCheck) got[k] = -2;
+        }
         PetscCall(NewtonLineSearchDestroy(&nls));
         PetscCall(SNESDestroy(&snes));
       }
-      snprintf(what, sizeof(what), "-newton_watchdog %s: used in a release without contact %d, a stage without contact %d, a release with contact %d; PETSc's bt back at a stage with contact", modes[m], got[0], got[1], got[2]);
+      snprintf(what, sizeof(what), "-newton_watchdog %s: used in a release without contact %d, a stage without contact %d, a release with contact %d; PETSc's bt back at a stage with contact, the pre-check kept", modes[m], got[0], got[1], got[2]);
       Ok(got[0] == want[m][0] && got[1] == want[m][1] && got[2] == want[m][2], what);
     }
   }
