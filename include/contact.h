@@ -135,7 +135,8 @@ PetscErrorCode ContactAugmentSoften(Contact c, PetscBool *softened, PetscReal *f
 /* the contact status and normal force of every slave node at the current iterate */
 PetscErrorCode ContactRecordActive(Contact c);
 /* nodes that entered or left contact in the last Newton iteration with a significant normal
-   force (before or after); count over all ranks and the smallest node id */
+   force (before or after: above 1e-3 of the largest normal force of the committed state and the
+   last two iterates); count over all ranks and the smallest node id */
 PetscErrorCode ContactChatter(Contact c, PetscInt *count, PetscInt *node);
 /* keep 1 (nodes on frictionless tools) or 2 (every tool): every such node pressed in the
    committed state (in contact with a normal force) and paired with the same tool now is closed
