@@ -1854,7 +1854,8 @@ PetscErrorCode ContactGetNodeFields(Contact contact, PetscReal *cg, PetscReal *c
   PetscFunctionReturn(0);
 }
 
-#define CKPT_NCS (28 + 1 + NREL) /* doubles per vertex for the contact state (24 before the multipliers, 27 before the penalties' factor, 28 before the release by nodal forces) */
+#define CKPT_NST 28                  /* the node state's doubles in a row (24 before the multipliers, 27 before the penalties' factor) */
+#define CKPT_NCS (CKPT_NST + 1 + NREL) /* doubles per vertex for the contact state: the node state, then the release by nodal forces (its tool, its NREL doubles) */
 
 PetscInt ContactCheckpointWidth(void) { return CKPT_NCS; }
 
@@ -1864,11 +1865,11 @@ PetscErrorCode ContactCheckpointPack(Contact contact, PetscReal *rows)
   PetscCall(PetscArrayzero(rows, CKPT_NCS * contact->mesh->nvo));
   for (PetscInt i = 0; i < contact->ns; i++) {
     const ContactState *s = &contact->cst_c[i];
-    const PetscReal     v[28] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip, s->lN, s->lT[0], s->lT[1], contact->kscale_c};
+    const PetscReal     v[CKPT_NST] = {1, (PetscReal)s->status, (PetscReal)s->tool, (PetscReal)s->patch, s->xi, s->eta, s->tT[0], s->tT[1], s->t1[0], s->t1[1], s->t1[2], (PetscReal)s->has_frame, s->y[0], s->y[1], s->y[2], s->gap, s->tN, s->f[0], s->f[1], s->f[2], s->fT[0], s->fT[1], s->fT[2], s->slip, s->lN, s->lT[0], s->lT[1], contact->kscale_c};
     PetscReal          *row = rows + CKPT_NCS * contact->mesh->vrow[contact->slave[i]];
-    PetscCall(PetscArraycpy(row, v, 28));
-    row[28] = (PetscReal)contact->nrel_tool[i];
-    PetscCall(PetscArraycpy(row + 29, contact->nrel + NREL * i, NREL));
+    PetscCall(PetscArraycpy(row, v, CKPT_NST));
+    row[CKPT_NST] = (PetscReal)contact->nrel_tool[i];
+    PetscCall(PetscArraycpy(row + CKPT_NST + 1, contact->nrel + NREL * i, NREL));
   }
   PetscFunctionReturn(0);
 }
@@ -1907,8 +1908,8 @@ PetscErrorCode ContactCheckpointUnpack(Contact contact, const PetscReal *rows, P
     s->lT[0] = d[25];
     s->lT[1] = d[26];
     kc       = PetscMax(kc, d[27]);
-    contact->nrel_tool[i] = (PetscInt)d[28];
-    PetscCall(PetscArraycpy(contact->nrel + NREL * i, d + 29, NREL));
+    contact->nrel_tool[i] = (PetscInt)d[CKPT_NST];
+    PetscCall(PetscArraycpy(contact->nrel + NREL * i, d + CKPT_NST + 1, NREL));
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, contact->comm));
   /* the augmentation's penalty factor (the same in every slave node's row; a rank without slave

@@ -11,7 +11,7 @@ struct _n_NewtonLineSearch {
   PetscBool watching; /* the last iteration took a relaxed step: Xr, Fr, Yr, fr its origin     */
   Vec       Xr, Fr, Yr;
   PetscReal fr, gr;   /* |R| at the origin, and at the relaxed step's end                     */
-  PetscInt  relaxed, kept, reverted, trials;
+  PetscInt  relaxed, reverted, trials; /* relaxed steps, those undone, residual evaluations */
 };
 
 PetscErrorCode NewtonLineSearchCreate(MPI_Comm comm, NewtonLineSearch *nls)
@@ -109,7 +109,6 @@ static PetscErrorCode NewtonLineSearchApply(SNESLineSearch ls, void *ctx)
        Armijo amount of the origin's full step, else back to the origin */
     nls->watching = PETSC_FALSE;
     if (!PetscIsInfOrNanReal(g) && g * g <= (1 - 2 * nls->alpha) * nls->fr * nls->fr) {
-      nls->kept++;
       if (mon) PetscCall(PetscViewerASCIIPrintf(mon, "      Line search (watchdog): full step |R| %g -> %g, below the relaxed step's origin %g\n", (double)fnorm, (double)g, (double)nls->fr));
     } else {
       nls->reverted++;
