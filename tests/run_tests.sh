@@ -30,6 +30,7 @@ run() { # run NAME CMD...: count its ok / not ok lines; a crash or non-zero exit
 run build           bash tests/test_build.sh
 run material        bin/test_material
 run hill48          bin/test_hill48
+run yld91           bin/test_yld91
 run umat            bin/test_umat
 run fe              bin/test_fe
 run eas             bin/test_eas

@@ -2,7 +2,9 @@
 # Integration tests of the Hill 48 material (-material_type hill48): with r-values 1 it is the J2
 # model (tension bar history to 10 digits), its Jacobian in a plastic, non-homogeneous problem
 # agrees with finite differences (-snes_test_jacobian; rolling direction along x and oblique),
-# and 1 and 2 ranks give the same history to 10 digits. Each check prints "ok - ..." or "not ok - ...".
+# and 1 and 2 ranks give the same history to 10 digits. The same for Barlat 1991 (-material_type
+# yld91): exponent 2 is hill48 (beam history to 9 digits), its Jacobian with the exponents 8 and 6,
+# 1 and 2 ranks. Each check prints "ok - ..." or "not ok - ...".
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -55,3 +57,17 @@ atrito 1 beam1 -options_file cases/clamped_beam.opts -output_interval 0 $STEEL &
 atrito 1 beam_iso -options_file cases/clamped_beam.opts -output_interval 0 -material_type hill48 &&
   ! compare "$OUT/beam1/history.csv" "$OUT/beam_iso/history.csv" 3 "-" >/dev/null &&
   ok "clamped beam: r-values 1.6/1.2/2.0 and 1/1/1 give different histories (3 digits)" || not_ok "clamped beam: the r-values change nothing"
+
+# 4. Barlat 1991 (yld91): exponent 2 with the steel's r-values is hill48; its Jacobian with the
+#    aluminium's r-values and exponent 8, and oblique axes with exponent 6; 1 and 2 ranks
+Y91="-material_type yld91 -material_yld91_r0 0.71 -material_yld91_r45 0.58 -material_yld91_r90 0.70"
+atrito 1 beam_y2 -options_file cases/clamped_beam.opts -output_interval 0 -material_type yld91 -material_yld91_exponent 2 -material_yld91_r0 1.6 -material_yld91_r45 1.2 -material_yld91_r90 2.0 &&
+  compare "$OUT/beam1/history.csv" "$OUT/beam_y2/history.csv" 9 "clamped beam: yld91 with exponent 2 = hill48 (r 1.6/1.2/2.0; 9 digits)"
+atrito 1 jac_y8 $beam $Y91 -snes_test_jacobian &&
+  pycheck snes_test_jacobian "$OUT/jac_y8.log" 6 1e-6 "yld91 (exponent 8, r 0.71/0.58/0.70), plastic"
+atrito 1 jac_y6 $beam -material_type yld91 -material_yld91_exponent 6 -material_yld91_r0 1.6 -material_yld91_r45 1.2 -material_yld91_r90 2.0 -material_yld91_rd 1,1,0.2 -material_yld91_normal -1,1,0 \
+  -material_hardening linear -material_yield 150 -material_hardening_modulus 800 -snes_test_jacobian &&
+  pycheck snes_test_jacobian "$OUT/jac_y6.log" 6 1e-6 "yld91 (exponent 6, r 1.6/1.2/2.0), oblique axes, linear hardening"
+atrito 1 beam_y8a -options_file cases/clamped_beam.opts -output_interval 0 $Y91 &&
+  atrito 2 beam_y8b -options_file cases/clamped_beam.opts -output_interval 0 $Y91 &&
+  compare "$OUT/beam_y8a/history.csv" "$OUT/beam_y8b/history.csv" 10 "clamped beam, yld91 (exponent 8, r 0.71/0.58/0.70): np=1 and np=2 (10 digits)"

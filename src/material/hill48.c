@@ -60,19 +60,21 @@
    tau -> Q tau Q^T; rotating the axes and both configurations (F -> Q F Q^T, rd -> Q rd,
    nd -> Q nd, Cp^{-1} -> Q Cp^{-1} Q^T) gives tau -> Q tau Q^T.
 
-   The first part of this file is the model on plain arrays (include/material_hill48.h); the
+   The kinematics (polar decomposition, trial log strain in the frame, flow update, the chain of
+   the tangent) are src/material/aniso.c's, shared with yld91. The first part of this file is
+   the model on plain arrays (include/material_hill48.h); the
    second is the material type "hill48": its options (prefix material_), view and kernel table;
    elasticity, hardening and their options are J2's (material_j2.h). */
 #include <float.h>
 #include <math.h>
 #include <string.h>
 
+#include "material_aniso.h"
 #include "material_hill48.h"
 #include "material_impl.h"
 #include "options.h"
 #include "tensor.h"
 
-static const double SQ2 = 1.41421356237309504880;
 
 void Hill48FromR(double r0, double r45, double r90, double *F, double *G, double *H, double *L, double *M, double *N)
 {
@@ -98,29 +100,7 @@ int Hill48ParamsSetup(HillParams *hp)
     if (!(F + G + H > 0.0 && F * G + G * H + H * F > 0.0 && hp->L > 0.0 && hp->M > 0.0 && hp->N > 0.0)) return HILL48_ERR_CONVEX;
   }
   /* the frame: unit normal, rolling direction made orthogonal to it, td = nd x rd */
-  {
-    double       n[3], r[3], t[3];
-    const double ln = sqrt(hp->nd[0] * hp->nd[0] + hp->nd[1] * hp->nd[1] + hp->nd[2] * hp->nd[2]);
-    const double lr = sqrt(hp->rd[0] * hp->rd[0] + hp->rd[1] * hp->rd[1] + hp->rd[2] * hp->rd[2]);
-    if (!(ln > 0.0 && lr > 0.0) || !isfinite(ln + lr)) return HILL48_ERR_AXES;
-    for (int i = 0; i < 3; i++) {
-      n[i] = hp->nd[i] / ln;
-      r[i] = hp->rd[i] / lr;
-    }
-    const double c = r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
-    if (fabs(c) > 1e-6) return HILL48_ERR_AXES;
-    for (int i = 0; i < 3; i++) r[i] -= c * n[i];
-    const double l2 = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-    for (int i = 0; i < 3; i++) r[i] /= l2;
-    t[0] = n[1] * r[2] - n[2] * r[1];
-    t[1] = n[2] * r[0] - n[0] * r[2];
-    t[2] = n[0] * r[1] - n[1] * r[0];
-    for (int i = 0; i < 3; i++) {
-      hp->A[3 * i + 0] = r[i];
-      hp->A[3 * i + 1] = t[i];
-      hp->A[3 * i + 2] = n[i];
-    }
-  }
+  if (AnisoFrame(hp->rd, hp->nd, hp->A)) return HILL48_ERR_AXES;
   for (int i = 0; i < 36; i++) hp->P[i] = 0.0;
   hp->P[0]  = hp->G + hp->H;
   hp->P[1]  = hp->P[6] = -hp->H;
@@ -135,90 +115,8 @@ int Hill48ParamsSetup(HillParams *hp)
   return HILL48_OK;
 }
 
-/* ---------- small helpers ---------- */
 
-/* symmetric 3x3 <-> Mandel vector (11, 22, 33, 23, 31, 12) */
-static void to_mandel(const double T[9], double v[6])
-{
-  v[0] = T[0];
-  v[1] = T[4];
-  v[2] = T[8];
-  v[3] = SQ2 * 0.5 * (T[5] + T[7]);
-  v[4] = SQ2 * 0.5 * (T[6] + T[2]);
-  v[5] = SQ2 * 0.5 * (T[1] + T[3]);
-}
-
-static void from_mandel(const double v[6], double T[9])
-{
-  T[0] = v[0];
-  T[4] = v[1];
-  T[8] = v[2];
-  T[5] = T[7] = v[3] / SQ2;
-  T[2] = T[6] = v[4] / SQ2;
-  T[1] = T[3] = v[5] / SQ2;
-}
-
-/* T: the Mandel form of S -> M S M^T (columns: the images of the Mandel basis tensors) */
-static void mandel_rotation(const double M[9], double T[36])
-{
-  for (int j = 0; j < 6; j++) {
-    double e[6] = {0, 0, 0, 0, 0, 0}, S[9], B[9], v[6], Y[9];
-    e[j] = 1.0;
-    from_mandel(e, S);
-    t3_mult(S, M, Y);
-    t3_mul(M, Y, B);
-    to_mandel(B, v);
-    for (int i = 0; i < 6; i++) T[6 * i + j] = v[i];
-  }
-}
-
-/* B = M^T S M (S symmetric; B symmetrized) */
-static void congruence_t(const double M[9], const double S[9], double B[9])
-{
-  double Y[9];
-  t3_mul(S, M, Y);
-  t3_tmul(M, Y, B);
-  B[1] = B[3] = 0.5 * (B[1] + B[3]);
-  B[2] = B[6] = 0.5 * (B[2] + B[6]);
-  B[5] = B[7] = 0.5 * (B[5] + B[7]);
-}
-
-/* B = M S M^T (S symmetric; B symmetrized) */
-static void congruence(const double M[9], const double S[9], double B[9])
-{
-  double Y[9];
-  t3_mult(S, M, Y);
-  t3_mul(M, Y, B);
-  B[1] = B[3] = 0.5 * (B[1] + B[3]);
-  B[2] = B[6] = 0.5 * (B[2] + B[6]);
-  B[5] = B[7] = 0.5 * (B[5] + B[7]);
-}
-
-/* Q diag(d) Q^T */
-static void eig_compose(const double Q[9], const double d[3], double A[9])
-{
-  for (int i = 0; i < 3; i++)
-    for (int j = i; j < 3; j++) A[3 * i + j] = A[3 * j + i] = Q[3 * i] * d[0] * Q[3 * j] + Q[3 * i + 1] * d[1] * Q[3 * j + 1] + Q[3 * i + 2] * d[2] * Q[3 * j + 2];
-}
-
-/* (ln x - ln y)/(x - y), accurate for x ~ y too (as in j2.c) */
-static inline double dlog_ratio(double x, double y)
-{
-  const double m = 0.5 * (x + y), t = (x - y) / (x + y);
-  if (fabs(t) < 1e-4) {
-    const double t2 = t * t;
-    return (1.0 + t2 * (1.0 / 3.0 + 0.2 * t2)) / m;
-  }
-  return atanh(t) / (m * t);
-}
-
-static void fail_outputs(const double hn[HILL48_NHIST], double tau[9], double *dtau, double h[HILL48_NHIST])
-{
-  for (int i = 0; i < 9; i++) tau[i] = 0.0;
-  if (dtau)
-    for (int i = 0; i < 81; i++) dtau[i] = 0.0;
-  for (int i = 0; i < HILL48_NHIST; i++) h[i] = hn[i];
-}
+/* ---------- the return map ---------- */
 
 /* y = M x (6x6) */
 static void mv6(const double M[36], const double x[6], double y[6])
@@ -230,6 +128,7 @@ static void mv6(const double M[36], const double x[6], double y[6])
   }
 }
 
+/* The eigenbasis of P: its normal block by t3_sym_eig, the shear block is diagonal. */
 /* The eigenbasis of P: its normal block by t3_sym_eig, the shear block is diagonal. */
 static void hill_eig(const HillParams *hp, double p[6], double Phi[36])
 {
@@ -310,74 +209,20 @@ static int hill_return_map(const HillParams *hp, const double p[6], const double
   return 0;
 }
 
-int Hill48Update(const HillParams *hp, const double F[9], const double hn[HILL48_NHIST], double tau[9], double *dtau, double h[HILL48_NHIST], int *plastic)
+/* the return map of AnisoReturnFn (include/material_aniso.h) */
+static int hill_stress_return(const void *ctx, const double D[36], const double etr[6], const double str[6], double ep_n, double s[6], double ee[6], double *ep, double *Dalg, int *plastic)
 {
-  const J2Params *mp = &hp->base;
-  const double    K = mp->K, G = mp->G;
-  const double   *Ax = hp->A;
-  if (plastic) *plastic = 0;
-
-  const double J = t3_det(F);
-  if (!(J > 0.0) || !isfinite(J)) {
-    fail_outputs(hn, tau, dtau, h);
-    return MAT_ERR_JACOBIAN;
-  }
-
-  /* polar decomposition F = R U from C = F^T F = V diag(c) V^T */
-  double C[9], cl[3], V[9], u[3], ui[3], U[9], Ui[9], R[9];
-  t3_tmul(F, F, C);
-  C[1] = C[3] = 0.5 * (C[1] + C[3]);
-  C[2] = C[6] = 0.5 * (C[2] + C[6]);
-  C[5] = C[7] = 0.5 * (C[5] + C[7]);
-  t3_sym_eig(C, cl, V);
-  if (!(cl[0] > 0.0 && cl[1] > 0.0 && cl[2] > 0.0)) {
-    fail_outputs(hn, tau, dtau, h);
-    return MAT_ERR_JACOBIAN;
-  }
-  for (int a = 0; a < 3; a++) {
-    u[a]  = sqrt(cl[a]);
-    ui[a] = 1.0 / u[a];
-  }
-  eig_compose(V, u, U);
-  eig_compose(V, ui, Ui);
-  t3_mul(F, Ui, R);
-
-  /* rotated trial elastic left Cauchy-Green tensor bb = U Cp^{-1}_n U, its eigenbasis */
-  const double Cpi[9] = {hn[0], hn[3], hn[5], hn[3], hn[1], hn[4], hn[5], hn[4], hn[2]};
-  double       bb[9], lam[3], Q[9];
-  congruence(U, Cpi, bb);
-  t3_sym_eig(bb, lam, Q);
-  if (!(lam[0] > 0.0 && lam[1] > 0.0 && lam[2] > 0.0)) {
-    fail_outputs(hn, tau, dtau, h);
-    return MAT_ERR_JACOBIAN;
-  }
-
-  /* trial log strain in the orthotropy frame: e = W^T diag(ln lam / 2) W, W = Q^T A */
-  double W[9], el[3], E3[9], etr[6];
-  t3_tmul(Q, Ax, W);
-  for (int a = 0; a < 3; a++) el[a] = 0.5 * log(lam[a]);
-  {
-    double Dg[9] = {el[0], 0, 0, 0, el[1], 0, 0, 0, el[2]};
-    congruence_t(W, Dg, E3);
-  }
-  to_mandel(E3, etr);
-
-  /* trial stress s_tr = D e_tr, its Hill stress */
-  const double lmb = K - 2.0 * G / 3.0;
-  double       str[6], s[6], D[36];
-  for (int i = 0; i < 36; i++) D[i] = 0.0;
-  for (int i = 0; i < 6; i++) D[7 * i] = 2.0 * G;
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) D[6 * i + j] += lmb;
-  mv6(D, etr, str);
-  double Ps[6], q_tr = 0.0;
+  const HillParams *hp = (const HillParams *)ctx;
+  const J2Params   *mp = &hp->base;
+  const double      G  = mp->G;
+  double            Ps[6], q_tr = 0.0;
   mv6(hp->P, str, Ps);
   for (int i = 0; i < 6; i++) q_tr += str[i] * Ps[i];
-  q_tr              = sqrt(q_tr > 0.0 ? q_tr : 0.0);
-  const double ep_n = hn[HILL48_HIST_EP];
+  q_tr = sqrt(q_tr > 0.0 ? q_tr : 0.0);
 
-  double Dalg[36], lam_p = 0.0, ee[6];
-  int    isplastic = 0;
+  double lam_p = 0.0;
+  *plastic = 0;
+  *ep      = ep_n;
   for (int i = 0; i < 6; i++) {
     s[i]  = str[i];
     ee[i] = etr[i];
@@ -390,15 +235,14 @@ int Hill48Update(const HillParams *hp, const double F[9], const double hn[HILL48
       for (int j = 0; j < 6; j++) ztr[i] += Phi[6 * j + i] * str[j];
     }
     if (hill_return_map(hp, p, ztr, q_tr, ep_n, &lam_p, z, &q, &Hp)) {
-      fail_outputs(hn, tau, dtau, h);
-      return MAT_ERR_RETURNMAP;
+      return 1;
     }
-    isplastic = 1;
+    *plastic = 1;
     /* s = Phi z; e_e = e_tr - lam P s */
     mv6(Phi, z, s);
     mv6(hp->P, s, Ps);
     for (int i = 0; i < 6; i++) ee[i] = etr[i] - lam_p * Ps[i];
-    if (dtau) {
+    if (Dalg) {
       /* D_alg = Xi D + v w^T, Xi = Phi diag(xi) Phi^T */
       const double c = 2.0 * G;
       double       Xi[36], xi[6], m[6], mXi[6], v[6], mXm = 0.0, w[6];
@@ -428,128 +272,19 @@ int Hill48Update(const HillParams *hp, const double F[9], const double hn[HILL48
           Dalg[6 * i + j] = t + v[i] * w[j];
         }
     }
-  } else {
+    *ep = ep_n + lam_p * sqrt(s[0] * Ps[0] + s[1] * Ps[1] + s[2] * Ps[2] + s[3] * Ps[3] + s[4] * Ps[4] + s[5] * Ps[5]);
+  } else if (Dalg) {
     for (int i = 0; i < 36; i++) Dalg[i] = D[i];
   }
-
-  /* tau_b = A s A^T, tau = R tau_b R^T */
-  double S3[9], tb[9];
-  from_mandel(s, S3);
-  congruence(Ax, S3, tb);
-  congruence(R, tb, tau);
-
-  /* history: bb_e = exp(2 A e_e A^T), Cp^{-1} = U^{-1} bb_e U^{-1} */
-  if (isplastic) {
-    double Ee[9], eb[9], lb[3], Qb[9], be[3], Bb[9], Cn[9];
-    from_mandel(ee, Ee);
-    congruence(Ax, Ee, eb);
-    t3_sym_eig(eb, lb, Qb);
-    for (int a = 0; a < 3; a++) be[a] = exp(2.0 * lb[a]);
-    eig_compose(Qb, be, Bb);
-    congruence(Ui, Bb, Cn);
-    h[0]                = Cn[0];
-    h[1]                = Cn[4];
-    h[2]                = Cn[8];
-    h[3]                = Cn[1];
-    h[4]                = Cn[5];
-    h[5]                = Cn[2];
-    h[HILL48_HIST_EP] = ep_n + lam_p * sqrt(s[0] * Ps[0] + s[1] * Ps[1] + s[2] * Ps[2] + s[3] * Ps[3] + s[4] * Ps[4] + s[5] * Ps[5]);
-  } else {
-    for (int i = 0; i < HILL48_NHIST; i++) h[i] = hn[i];
-  }
-  if (plastic) *plastic = isplastic;
-  if (!dtau) return MAT_OK;
-
-  /* The tangent, one column dF = e_k (x) E_L at a time. In the eigenbasis Q of bb (with
-     a~ = Q^T R^T e_k, c~ = Q^T R^T Gm^T E_L, omega~ = det Q Q^T omega):
-       (Q^T d bb Q)_ab = a~_a c~_b + c~_a a~_b + (lam_a - lam_b) W(omega~)_ab;
-     the chain d eb' -> de -> ds -> R A ds A^T R^T is one 6x6 map K = T(R A) D_alg T(W^T) on
-     Mandel vectors (T(M): the Mandel form of S -> M S M^T), and
-     R (Omega tau_b - tau_b Omega) R^T = W(R omega) tau - tau W(R omega). */
-  double Gm[9], Zi[9], Z[9], Gam[9], K6[36];
-  t3_mult(Cpi, F, Gm); /* Cp^{-1} F^T */
-  {
-    const double tr = U[0] + U[4] + U[8];
-    for (int i = 0; i < 9; i++) Zi[i] = -U[i];
-    Zi[0] += tr;
-    Zi[4] += tr;
-    Zi[8] += tr;
-    t3_inv(Zi, Z);
-  }
-  for (int a = 0; a < 3; a++)
-    for (int b = 0; b < 3; b++) Gam[3 * a + b] = 0.5 * (a == b ? 1.0 / lam[a] : dlog_ratio(lam[a], lam[b]));
-  {
-    double Wt[9], RA[9], T1[36], T2[36], Y[36];
-    t3_transpose(W, Wt);
-    t3_mul(R, Ax, RA);
-    mandel_rotation(Wt, T1);
-    mandel_rotation(RA, T2);
-    for (int i = 0; i < 6; i++)
-      for (int j = 0; j < 6; j++) {
-        double t = 0.0;
-        for (int m = 0; m < 6; m++) t += Dalg[6 * i + m] * T1[6 * m + j];
-        Y[6 * i + j] = t;
-      }
-    for (int i = 0; i < 6; i++)
-      for (int j = 0; j < 6; j++) {
-        double t = 0.0;
-        for (int m = 0; m < 6; m++) t += T2[6 * i + m] * Y[6 * m + j];
-        K6[6 * i + j] = t;
-      }
-  }
-  const double dQ = t3_det(Q) > 0.0 ? 1.0 : -1.0;
-  for (int k = 0; k < 3; k++) {
-    const double av[3] = {R[3 * k], R[3 * k + 1], R[3 * k + 2]}; /* R^T e_k */
-    double       at[3];
-    for (int i = 0; i < 3; i++) at[i] = Q[i] * av[0] + Q[3 + i] * av[1] + Q[6 + i] * av[2];
-    for (int L = 0; L < 3; L++) {
-      double cv[3], ct[3], ax[3] = {0, 0, 0}, om[3], ot[3], os[3];
-      /* c = R^T (row L of Gm), c~ = Q^T c */
-      for (int i = 0; i < 3; i++) cv[i] = R[i] * Gm[3 * L] + R[3 + i] * Gm[3 * L + 1] + R[6 + i] * Gm[3 * L + 2];
-      for (int i = 0; i < 3; i++) ct[i] = Q[i] * cv[0] + Q[3 + i] * cv[1] + Q[6 + i] * cv[2];
-      /* omega = Z (E_L x a), omega~ = det Q Q^T omega, R omega */
-      if (L == 0) {
-        ax[1] = -av[2];
-        ax[2] = av[1];
-      } else if (L == 1) {
-        ax[0] = av[2];
-        ax[2] = -av[0];
-      } else {
-        ax[0] = -av[1];
-        ax[1] = av[0];
-      }
-      for (int i = 0; i < 3; i++) om[i] = Z[3 * i] * ax[0] + Z[3 * i + 1] * ax[1] + Z[3 * i + 2] * ax[2];
-      for (int i = 0; i < 3; i++) {
-        ot[i] = dQ * (Q[i] * om[0] + Q[3 + i] * om[1] + Q[6 + i] * om[2]);
-        os[i] = R[3 * i] * om[0] + R[3 * i + 1] * om[1] + R[3 * i + 2] * om[2];
-      }
-      /* d eb' (Mandel, eigenbasis of bb); W(w)_01 = -w2, W_02 = w1, W_12 = -w0 */
-      double x[6], ds[6];
-      x[0] = Gam[0] * 2.0 * at[0] * ct[0];
-      x[1] = Gam[4] * 2.0 * at[1] * ct[1];
-      x[2] = Gam[8] * 2.0 * at[2] * ct[2];
-      x[3] = SQ2 * Gam[5] * (at[1] * ct[2] + ct[1] * at[2] + (lam[1] - lam[2]) * -ot[0]);
-      x[4] = SQ2 * Gam[2] * (at[2] * ct[0] + ct[2] * at[0] + (lam[2] - lam[0]) * -ot[1]);
-      x[5] = SQ2 * Gam[1] * (at[0] * ct[1] + ct[0] * at[1] + (lam[0] - lam[1]) * -ot[2]);
-      mv6(K6, x, ds);
-      /* d tau = (ds as a tensor) + W(R omega) tau - tau W(R omega) */
-      double dt[9];
-      from_mandel(ds, dt);
-      const double Ws[9] = {0, -os[2], os[1], os[2], 0, -os[0], -os[1], os[0], 0};
-      double       T1[9], T2[9];
-      t3_mul(Ws, tau, T1);
-      t3_mul(tau, Ws, T2);
-      const int col = 3 * k + L;
-      for (int i = 0; i < 3; i++)
-        for (int j = i; j < 3; j++) {
-          const double v = dt[3 * i + j] + T1[3 * i + j] - T2[3 * i + j];
-          dtau[9 * (3 * i + j) + col] = v;
-          dtau[9 * (3 * j + i) + col] = v;
-        }
-    }
-  }
-  return MAT_OK;
+  return 0;
 }
+
+
+int Hill48Update(const HillParams *hp, const double F[9], const double hn[HILL48_NHIST], double tau[9], double *dtau, double h[HILL48_NHIST], int *plastic)
+{
+  return AnisoLogUpdate(&hp->base, hp->A, hill_stress_return, hp, F, hn, tau, dtau, h, plastic);
+}
+
 
 /* ------------------------------------------------------------------------------------------ */
 /* the kernel table                                                                            */

@@ -33,6 +33,7 @@ static PetscErrorCode MaterialFinalizePackage(void)
 /* the create functions of the types (src/material/<name>.c) */
 PETSC_INTERN PetscErrorCode MaterialCreate_J2(Material);
 PETSC_INTERN PetscErrorCode MaterialCreate_Hill48(Material);
+PETSC_INTERN PetscErrorCode MaterialCreate_Yld91(Material);
 PETSC_INTERN PetscErrorCode MaterialCreate_Umat(Material);
 
 static PetscErrorCode MaterialRegisterAll(void)
@@ -44,6 +45,7 @@ static PetscErrorCode MaterialRegisterAll(void)
   /* one line per material type */
   PetscCall(MaterialRegister("j2", MaterialCreate_J2));
   PetscCall(MaterialRegister("hill48", MaterialCreate_Hill48));
+  PetscCall(MaterialRegister("yld91", MaterialCreate_Yld91));
   PetscCall(MaterialRegister("umat", MaterialCreate_Umat));
   PetscFunctionReturn(0);
 }
@@ -88,7 +90,7 @@ static PetscErrorCode MaterialReset(Material mat)
 PetscErrorCode MaterialSetFromOptions(Material mat)
 {
   char      type[sizeof(mat->type_name)];
-  PetscBool same;
+  PetscBool same, view = PETSC_FALSE;
   PetscErrorCode (*create)(Material) = NULL;
 
   PetscFunctionBeginUser;
@@ -96,6 +98,7 @@ PetscErrorCode MaterialSetFromOptions(Material mat)
   PetscCall(PetscStrncpy(type, mat->type_name[0] ? mat->type_name : "j2", sizeof(type)));
   PetscOptionsBegin(mat->comm, "material_", "Material", "Material");
   PetscCall(PetscOptionsFList("-type", "Material model", NULL, MaterialList, type, type, sizeof(type), NULL));
+  PetscCall(PetscOptionsBool("-view", "Print the material's parameters once they are set (fitted coefficients included)", NULL, view, &view, NULL));
   PetscOptionsEnd();
   PetscCall(PetscFunctionListFind(MaterialList, type, &create));
   PetscCheck(create, mat->comm, PETSC_ERR_USER_INPUT, "-material_type %s: unknown material (registered: %s)", type, MaterialTypeNames);
@@ -107,6 +110,7 @@ PetscErrorCode MaterialSetFromOptions(Material mat)
     PetscCall(PetscStrncpy(mat->type_name, type, sizeof(mat->type_name)));
   }
   if (mat->ops.setfromoptions) PetscCall(mat->ops.setfromoptions(mat));
+  if (view) PetscCall(MaterialView(mat, NULL));
   PetscFunctionReturn(0);
 }
 
