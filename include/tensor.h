@@ -81,4 +81,9 @@ void t3_sym_eig(const double A[9], double lam[3], double Q[9]);
 /* the same by cyclic Jacobi rotations (iterative: 3 to 5 sweeps) */
 void t3_sym_eig_jacobi(const double A[9], double lam[3], double Q[9]);
 
+/* Solve A X = B in place (A n x n row-major, destroyed; B n x nrhs row-major, overwritten by X),
+   Gaussian elimination with partial pivoting; returns 0, or 1 when A is singular (a pivot below
+   1e-14 of A's largest entry) or not finite */
+int dense_solve(int n, double *A, int nrhs, double *B);
+
 #endif

@@ -398,6 +398,7 @@ static PetscErrorCode test_object(void)
       {"-material_type yld91 -material_yld91_r0 2 -material_yld91_c 1,1,1,1,1,1", "exclude each other"                            },
       {"-material_type yld91 -material_yld91_rd 1,0,0 -material_yld91_normal 1,0,1", "must be non-zero and orthogonal"             },
       {"-material_type yld91 -material_yld91_normal 1,0",                      "-material_yld91_normal needs 3 components"        },
+      {"-material_type yld91 -material_yld91_r0 100 -material_yld91_r45 100 -material_yld91_r90 0.01", "to these r-values did not converge"},
     };
     for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
       PetscCall(MaterialFromOptions(bad[i][0], &mat, &ierr));

@@ -152,46 +152,6 @@ static int eas_eval(const MaterialKernel *mat, const EasGeom *g, const double d[
   return MAT_OK;
 }
 
-/* Solve A X = B in place (A n x n row-major, destroyed; B n x nrhs row-major, overwritten by X),
-   Gaussian elimination with partial pivoting; returns 0, or 1 when A is singular */
-static int dense_solve(int n, double *A, int nrhs, double *B)
-{
-  double amax = 0;
-  for (int i = 0; i < n * n; i++) amax = fmax(amax, fabs(A[i]));
-  if (!(amax > 0) || !isfinite(amax)) return 1;
-  for (int c = 0; c < n; c++) {
-    int p = c;
-    for (int r = c + 1; r < n; r++)
-      if (fabs(A[r * n + c]) > fabs(A[p * n + c])) p = r;
-    if (!(fabs(A[p * n + c]) > 1e-14 * amax)) return 1;
-    if (p != c) {
-      for (int k = 0; k < n; k++) {
-        const double t = A[c * n + k];
-        A[c * n + k]   = A[p * n + k];
-        A[p * n + k]   = t;
-      }
-      for (int k = 0; k < nrhs; k++) {
-        const double t  = B[c * nrhs + k];
-        B[c * nrhs + k] = B[p * nrhs + k];
-        B[p * nrhs + k] = t;
-      }
-    }
-    for (int r = c + 1; r < n; r++) {
-      const double l = A[r * n + c] / A[c * n + c];
-      if (l == 0) continue;
-      for (int k = c + 1; k < n; k++) A[r * n + k] -= l * A[c * n + k];
-      for (int k = 0; k < nrhs; k++) B[r * nrhs + k] -= l * B[c * nrhs + k];
-    }
-  }
-  for (int c = n - 1; c >= 0; c--)
-    for (int k = 0; k < nrhs; k++) {
-      double s = B[c * nrhs + k];
-      for (int j = c + 1; j < n; j++) s -= A[c * n + j] * B[j * nrhs + k];
-      B[c * nrhs + k] = s / A[c * n + c];
-    }
-  return 0;
-}
-
 static double res_alpha(const double f[ND])
 {
   double r = 0;

@@ -101,7 +101,32 @@ static void mv6(const double M[36], const double x[6], double y[6])
   }
 }
 
-double Yld91Effective(const Yld91Params *yp, const double s[6], double n[6], double H[36])
+/* T, the Mandel form of S -> Q S Q^T (the closed form of AnisoMandelRotation): with (i, j) the
+   index pair of a Mandel row, (p, q) that of a column, w = 1 or sqrt 2 (normal or shear row)
+   and c = 1/2 or 1/sqrt 2 (normal or shear column), T_row,col = w c (Q_ip Q_jq + Q_iq Q_jp) */
+static void mandel_rotation(const double Q[9], double T[36])
+{
+  static const int pi[6] = {0, 1, 2, 1, 2, 0}, pj[6] = {0, 1, 2, 2, 0, 1};
+  for (int row = 0; row < 6; row++) {
+    const int    i = pi[row], j = pj[row];
+    const double w = row < 3 ? 1.0 : SQ2;
+    for (int col = 0; col < 6; col++) {
+      const int    p = pi[col], q = pj[col];
+      const double c = col < 3 ? 0.5 : 1.0 / SQ2;
+      T[6 * row + col] = w * c * (Q[3 * i + p] * Q[3 * j + q] + Q[3 * i + q] * Q[3 * j + p]);
+    }
+  }
+}
+
+/* what the return map keeps of an evaluation at s: sigma_e, the scale k, the scaled principal
+   differences a, the gradient factor f, the rotation T of the eigenbasis and the gradient nt with
+   respect to S~ (frame, Mandel) */
+typedef struct {
+  double se, k, f, a[3], T[36], nt[6];
+} Yld91Point;
+
+/* sigma_e at s; with n not NULL also n = d sigma_e / ds and the data of the Hessian in pt */
+static double yld91_eval(const Yld91Params *yp, const double s[6], Yld91Point *pt, double n[6])
 {
   const int m = yp->m;
   double    St[6], S3[9], Sl[3], Q[9];
@@ -110,73 +135,82 @@ double Yld91Effective(const Yld91Params *yp, const double s[6], double n[6], dou
   t3_sym_eig(S3, Sl, Q);
   const double d12 = Sl[0] - Sl[1], d23 = Sl[1] - Sl[2], d31 = Sl[2] - Sl[0];
   const double k   = fmax(fabs(d12), fmax(fabs(d23), fabs(d31)));
+  pt->k            = k;
+  pt->se           = 0.0;
   if (n)
-    for (int i = 0; i < 6; i++) n[i] = 0.0;
-  if (H)
-    for (int i = 0; i < 36; i++) H[i] = 0.0;
+    for (int i = 0; i < 6; i++) n[i] = pt->nt[i] = 0.0;
   if (!(k > 0.0)) return 0.0;
-  const double a[3] = {d12 / k, d23 / k, d31 / k}; /* a[0] = (S1-S2)/k, a[1] = (S2-S3)/k, a[2] = (S3-S1)/k */
-  const double Phi  = ipow(a[0], m) + ipow(a[1], m) + ipow(a[2], m);
-  const double se   = k * pow(0.5 * Phi, 1.0 / m);
-  if (!n && !H) return se;
-  const double f = pow(se / k, 1.0 - m) / (2.0 * m); /* d sigma_e / d Phi^-gradient factor */
+  double *a = pt->a;
+  a[0]      = d12 / k; /* (S1-S2)/k, (S2-S3)/k, (S3-S1)/k */
+  a[1]      = d23 / k;
+  a[2]      = d31 / k;
+  const double Phi = ipow(a[0], m) + ipow(a[1], m) + ipow(a[2], m);
+  pt->se           = k * pow(0.5 * Phi, 1.0 / m);
+  if (!n) return pt->se;
+  pt->f = pow(pt->se / k, 1.0 - m) / (2.0 * m);
   /* phi_1 = m (a12^(m-1) - a31^(m-1)), phi_2 = m (a23^(m-1) - a12^(m-1)), phi_3 = m (a31^(m-1) - a23^(m-1)) */
-  const double p[3] = {m * (ipow(a[0], m - 1) - ipow(a[2], m - 1)), m * (ipow(a[1], m - 1) - ipow(a[0], m - 1)), m * (ipow(a[2], m - 1) - ipow(a[1], m - 1))};
-  double       T[36], ne[6], nt[6];
-  AnisoMandelRotation(Q, T); /* eigenbasis Mandel -> frame Mandel */
-  for (int i = 0; i < 6; i++) ne[i] = i < 3 ? f * p[i] : 0.0;
-  mv6(T, ne, nt);
-  if (n) mv6(yp->L, nt, n);
-  if (H) {
-    /* Hessian of Phi^ in the eigenbasis (Mandel): normal block and theta_23, theta_31, theta_12 */
-    double       He[36], Ht[36], Y[36];
-    const double mm = (double)m * (m - 1);
-    const double q12 = ipow(a[0], m - 2), q23 = ipow(a[1], m - 2), q31 = ipow(a[2], m - 2);
-    for (int i = 0; i < 36; i++) He[i] = 0.0;
-    He[0]  = mm * (q12 + q31);
-    He[7]  = mm * (q12 + q23);
-    He[14] = mm * (q23 + q31);
-    He[1] = He[6] = -mm * q12;
-    He[8] = He[13] = -mm * q23;
-    He[2] = He[12] = -mm * q31;
-    /* theta_ab = m [2 d_ab^(m-2) + sum_k d_ac^k d_bc^(m-2-k)] for (a,b,c) = (2,3,1), (3,1,2), (1,2,3) */
-    {
-      const double dab[3] = {a[1], a[2], a[0]};   /* S2-S3, S3-S1, S1-S2 */
-      const double dac[3] = {-a[0], -a[1], -a[2]}; /* S2-S1, S3-S2, S1-S3 */
-      const double dbc[3] = {a[2], a[0], a[1]};    /* S3-S1, S1-S2, S2-S3 */
-      for (int j = 0; j < 3; j++) {
-        double sum = 0.0;
-        for (int e = 0; e <= m - 2; e++) sum += ipow(dac[j], e) * ipow(dbc[j], m - 2 - e);
-        He[7 * (3 + j)] = m * (2.0 * ipow(dab[j], m - 2) + sum);
-      }
+  const double p[3]  = {m * (ipow(a[0], m - 1) - ipow(a[2], m - 1)), m * (ipow(a[1], m - 1) - ipow(a[0], m - 1)), m * (ipow(a[2], m - 1) - ipow(a[1], m - 1))};
+  double       ne[6] = {pt->f * p[0], pt->f * p[1], pt->f * p[2], 0.0, 0.0, 0.0};
+  mandel_rotation(Q, pt->T); /* eigenbasis Mandel -> frame Mandel */
+  mv6(pt->T, ne, pt->nt);
+  mv6(yp->L, pt->nt, n);
+  return pt->se;
+}
+
+/* the Hessian d2 sigma_e / ds2 at the point of yld91_eval (0 where sigma_e = 0) */
+static void yld91_hessian(const Yld91Params *yp, const Yld91Point *pt, double H[36])
+{
+  const int     m = yp->m;
+  const double *a = pt->a, *T = pt->T, *L = yp->L, k = pt->k;
+  double        He[36], Ht[36], Y[36];
+  for (int i = 0; i < 36; i++) H[i] = 0.0;
+  if (!(k > 0.0)) return;
+  /* Hessian of Phi^ in the eigenbasis (Mandel): normal block and theta_23, theta_31, theta_12 */
+  const double mm = (double)m * (m - 1);
+  const double q12 = ipow(a[0], m - 2), q23 = ipow(a[1], m - 2), q31 = ipow(a[2], m - 2);
+  for (int i = 0; i < 36; i++) He[i] = 0.0;
+  He[0]  = mm * (q12 + q31);
+  He[7]  = mm * (q12 + q23);
+  He[14] = mm * (q23 + q31);
+  He[1] = He[6] = -mm * q12;
+  He[8] = He[13] = -mm * q23;
+  He[2] = He[12] = -mm * q31;
+  /* theta_ab = m [2 d_ab^(m-2) + sum_k d_ac^k d_bc^(m-2-k)] for (a,b,c) = (2,3,1), (3,1,2), (1,2,3) */
+  {
+    const double dab[3] = {a[1], a[2], a[0]};    /* S2-S3, S3-S1, S1-S2 */
+    const double dac[3] = {-a[0], -a[1], -a[2]}; /* S2-S1, S3-S2, S1-S3 */
+    const double dbc[3] = {a[2], a[0], a[1]};    /* S3-S1, S1-S2, S2-S3 */
+    for (int j = 0; j < 3; j++) {
+      double sum = 0.0;
+      for (int e = 0; e <= m - 2; e++) sum += ipow(dac[j], e) * ipow(dbc[j], m - 2 - e);
+      He[7 * (3 + j)] = m * (2.0 * ipow(dab[j], m - 2) + sum);
     }
-    /* Ht = T He T^T, scaled: f / k; then minus (m-1)/se nt nt^T */
-    for (int i = 0; i < 6; i++)
-      for (int j = 0; j < 6; j++) {
-        double t = 0.0;
-        for (int l = 0; l < 6; l++) t += He[6 * i + l] * T[6 * j + l];
-        Y[6 * i + j] = t;
-      }
-    for (int i = 0; i < 6; i++)
-      for (int j = 0; j < 6; j++) {
-        double t = 0.0;
-        for (int l = 0; l < 6; l++) t += T[6 * i + l] * Y[6 * l + j];
-        Ht[6 * i + j] = f / k * t - (m - 1) / se * nt[i] * nt[j];
-      }
-    /* H = L Ht L */
-    for (int i = 0; i < 6; i++)
-      for (int j = 0; j < 6; j++) {
-        double t = 0.0;
-        for (int l = 0; l < 6; l++) t += Ht[6 * i + l] * yp->L[6 * l + j];
-        Y[6 * i + j] = t;
-      }
-    for (int i = 0; i < 6; i++)
-      for (int j = 0; j < 6; j++) {
-        double t = 0.0;
-        for (int l = 0; l < 6; l++) t += yp->L[6 * i + l] * Y[6 * l + j];
-        H[6 * i + j] = t;
-      }
   }
+  /* Y = He T^T (He: a 3x3 block and a diagonal) */
+  for (int i = 0; i < 6; i++)
+    for (int j = 0; j < 6; j++) Y[6 * i + j] = i < 3 ? He[6 * i] * T[6 * j] + He[6 * i + 1] * T[6 * j + 1] + He[6 * i + 2] * T[6 * j + 2] : He[7 * i] * T[6 * j + i];
+  /* Ht = f/k T Y - (m-1)/se nt nt^T (d2 sigma_e / dS~2) */
+  for (int i = 0; i < 6; i++)
+    for (int j = i; j < 6; j++) {
+      double s = 0.0;
+      for (int l = 0; l < 6; l++) s += T[6 * i + l] * Y[6 * l + j];
+      Ht[6 * i + j] = Ht[6 * j + i] = pt->f / k * s - (m - 1) / pt->se * pt->nt[i] * pt->nt[j];
+    }
+  /* H = L Ht L (L: a symmetric 3x3 block and the diagonal c4, c5, c6) */
+  for (int i = 0; i < 6; i++)
+    for (int j = 0; j < 6; j++) Y[6 * i + j] = j < 3 ? Ht[6 * i] * L[j] + Ht[6 * i + 1] * L[6 + j] + Ht[6 * i + 2] * L[12 + j] : Ht[6 * i + j] * L[7 * j];
+  for (int i = 0; i < 6; i++)
+    for (int j = 0; j < 6; j++) H[6 * i + j] = i < 3 ? L[6 * i] * Y[j] + L[6 * i + 1] * Y[6 + j] + L[6 * i + 2] * Y[12 + j] : L[7 * i] * Y[6 * i + j];
+}
+
+double Yld91Effective(const Yld91Params *yp, const double s[6], double n[6], double H[36])
+{
+  Yld91Point   pt;
+  double       nb[6];
+  const double se = yld91_eval(yp, s, &pt, (n || H) ? nb : NULL);
+  if (n)
+    for (int i = 0; i < 6; i++) n[i] = se > 0.0 ? nb[i] : 0.0;
+  if (H) yld91_hessian(yp, &pt, H);
   return se;
 }
 
@@ -187,47 +221,6 @@ double Yld91RValue(const Yld91Params *yp, double th)
   double       n[6];
   Yld91Effective(yp, sig, n, NULL);
   return (n[0] * s * s + n[1] * c * c - SQ2 * n[5] * s * c) / n[2];
-}
-
-/* Solve A x = b in place (A n x n, row-major, b n x nrhs) by Gaussian elimination with partial
-   pivoting; A and b are overwritten (b by x). Returns nonzero for a singular matrix. */
-static int dense_solve(int nn, double *A, double *b, int nrhs)
-{
-  for (int k = 0; k < nn; k++) {
-    int    piv = k;
-    double big = fabs(A[nn * k + k]);
-    for (int i = k + 1; i < nn; i++)
-      if (fabs(A[nn * i + k]) > big) {
-        big = fabs(A[nn * i + k]);
-        piv = i;
-      }
-    if (!(big > 0.0) || !isfinite(big)) return 1;
-    if (piv != k) {
-      for (int j = 0; j < nn; j++) {
-        const double t = A[nn * k + j];
-        A[nn * k + j]  = A[nn * piv + j];
-        A[nn * piv + j] = t;
-      }
-      for (int j = 0; j < nrhs; j++) {
-        const double t    = b[nrhs * k + j];
-        b[nrhs * k + j]   = b[nrhs * piv + j];
-        b[nrhs * piv + j] = t;
-      }
-    }
-    for (int i = k + 1; i < nn; i++) {
-      const double l = A[nn * i + k] / A[nn * k + k];
-      if (l == 0.0) continue;
-      for (int j = k; j < nn; j++) A[nn * i + j] -= l * A[nn * k + j];
-      for (int j = 0; j < nrhs; j++) b[nrhs * i + j] -= l * b[nrhs * k + j];
-    }
-  }
-  for (int k = nn - 1; k >= 0; k--)
-    for (int j = 0; j < nrhs; j++) {
-      double t = b[nrhs * k + j];
-      for (int i = k + 1; i < nn; i++) t -= A[nn * k + i] * b[nrhs * i + j];
-      b[nrhs * k + j] = t / A[nn * k + k];
-    }
-  return 0;
 }
 
 int Yld91ParamsSetup(Yld91Params *yp)
@@ -264,7 +257,7 @@ int Yld91ParamsSetup(Yld91Params *yp)
         for (int i = 0; i < 3; i++) J[3 * i + j] = (Yld91RValue(yp, th[i]) / rt[i] - 1.0 - res[i]) / hstep;
       }
       for (int i = 0; i < 3; i++) dx[i] = -res[i];
-      if (dense_solve(3, J, dx, 1)) break;
+      if (dense_solve(3, J, 1, dx)) break;
       /* damped: no coefficient changes by more than half its size in one step */
       double damp = 1.0;
       for (int i = 0; i < 3; i++)
@@ -295,10 +288,10 @@ int Yld91ParamsSetup(Yld91Params *yp)
 }
 
 /* the return map's residual r = (s - s_tr + c dl n(s), sigma_e(s) - sigma_y(ep_n + dl)), c = 2G;
-   n(s) on output; returns |r|^2 */
-static double yld91_residual(const Yld91Params *yp, const double str[6], double c, double ep_n, const double s[6], double dl, double n[6], double r[7])
+   n(s) and the point's data (pt) on output; returns |r|^2 */
+static double yld91_residual(const Yld91Params *yp, const double str[6], double c, double ep_n, const double s[6], double dl, Yld91Point *pt, double n[6], double r[7])
 {
-  const double se = Yld91Effective(yp, s, n, NULL);
+  const double se = yld91_eval(yp, s, pt, n);
   double       psi = 0.0;
   for (int i = 0; i < 6; i++) r[i] = s[i] - str[i] + c * dl * n[i];
   r[6] = se - J2YieldStress(&yp->base, ep_n + dl, NULL);
@@ -312,8 +305,10 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
   const Yld91Params *yp = (const Yld91Params *)ctx;
   const J2Params    *mp = &yp->base;
   const double       c  = 2.0 * mp->G;
-  double             n[6], Hs[36], Hp, dl = 0.0;
-  const double       se_tr = Yld91Effective(yp, str, n, NULL);
+  double             n[6], Hs[36], Hp, dl = 0.0, r[7];
+  Yld91Point         pt;
+  double             psi   = yld91_residual(yp, str, c, ep_n, str, 0.0, &pt, n, r);
+  const double       se_tr = pt.se;
 
   *plastic = 0;
   *ep      = ep_n;
@@ -328,8 +323,7 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
   }
   *plastic         = 1;
   const double tol = mp->rtol * se_tr;
-  double       r[7], psi = yld91_residual(yp, str, c, ep_n, s, dl, n, r);
-  int conv = 0;
+  int          conv = 0;
   for (int it = 0; it <= mp->maxit; it++) {
     double nr = 0.0;
     for (int i = 0; i < 7; i++) nr = fmax(nr, fabs(r[i]));
@@ -340,7 +334,7 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
     if (it == mp->maxit) break;
     /* Newton: [I + c dl H, c n; n^T, -H'] [ds; ddl] = -r */
     double J[49], d[7];
-    Yld91Effective(yp, s, n, Hs);
+    yld91_hessian(yp, &pt, Hs);
     J2YieldStress(mp, ep_n + dl, &Hp);
     for (int i = 0; i < 6; i++) {
       for (int j = 0; j < 6; j++) J[7 * i + j] = (i == j ? 1.0 : 0.0) + c * dl * Hs[6 * i + j];
@@ -349,14 +343,15 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
     }
     J[48] = -Hp;
     for (int i = 0; i < 7; i++) d[i] = -r[i];
-    if (dense_solve(7, J, d, 1)) return 1;
+    if (dense_solve(7, J, 1, d)) return 1;
     /* backtracking on psi = |r|^2 (Armijo, quadratic model, lambda in [0.1, 0.5] of the last) */
-    double lam = 1.0, sn[6], dln, nn[6], rn[7], psin = 0.0;
+    double     lam = 1.0, sn[6], dln, nn[6], rn[7], psin = 0.0;
+    Yld91Point ptn;
     int    acc = 0;
     for (int ls = 0; ls < 40; ls++) {
       for (int i = 0; i < 6; i++) sn[i] = s[i] + lam * d[i];
       dln = fmax(dl + lam * d[6], 0.0);
-      psin = yld91_residual(yp, str, c, ep_n, sn, dln, nn, rn);
+      psin = yld91_residual(yp, str, c, ep_n, sn, dln, &ptn, nn, rn);
       if (isfinite(psin) && psin <= (1.0 - 2e-4 * lam) * psi) {
         acc = 1;
         break;
@@ -369,13 +364,17 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
       if (sqrt(psi) <= 1e3 * tol) conv = 1;
       break;
     }
-    for (int i = 0; i < 6; i++) s[i] = sn[i];
+    for (int i = 0; i < 6; i++) {
+      s[i] = sn[i];
+      n[i] = nn[i];
+    }
     dl  = dln;
     psi = psin;
+    pt  = ptn;
     for (int i = 0; i < 7; i++) r[i] = rn[i];
   }
   if (!conv) return 1;
-  Yld91Effective(yp, s, n, Dalg ? Hs : NULL);
+  if (Dalg) yld91_hessian(yp, &pt, Hs);
   J2YieldStress(mp, ep_n + dl, &Hp);
   if (!isfinite(Hp)) return 1;
   for (int i = 0; i < 6; i++) ee[i] = etr[i] - dl * n[i];
@@ -391,7 +390,7 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
       Mm[7 * i] += 1.0;
       Mi[7 * i] = 1.0;
     }
-    if (dense_solve(6, Mm, Mi, 6)) return 1;
+    if (dense_solve(6, Mm, 6, Mi)) return 1;
     for (int i = 0; i < 6; i++)
       for (int j = 0; j < 6; j++) {
         double t = 0.0;
@@ -507,7 +506,7 @@ static PetscErrorCode MaterialSetFromOptions_Yld91(Material mat)
                  yp->rd[2], yp->nd[0], yp->nd[1], yp->nd[2]);
     }
     st = Yld91ParamsSetup(yp);
-    PetscCheck(st != YLD91_ERR_FIT, comm, PETSC_ERR_USER_INPUT, "-material_yld91_r0 %g, -material_yld91_r45 %g, -material_yld91_r90 %g: no coefficients c1..c6 of exponent %d reproduce these r-values", yp->r0,
+    PetscCheck(st != YLD91_ERR_FIT, comm, PETSC_ERR_USER_INPUT, "-material_yld91_r0 %g, -material_yld91_r45 %g, -material_yld91_r90 %g: the fit of c1..c6 (exponent %d) to these r-values did not converge", yp->r0,
                yp->r45, yp->r90, yp->m);
     PetscCheck(st == YLD91_OK, comm, PETSC_ERR_USER_INPUT, "invalid Barlat 1991 parameters (status %d)", st);
   }
