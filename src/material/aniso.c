@@ -7,9 +7,7 @@
    return map gives s, e_e and D_alg = ds/de_tr; tau_b = A s A^T, tau = R tau_b R^T; the flow
    update Cp^{-1}_{n+1} = U^{-1} exp(2 A e_e A^T) U^{-1}; the tangent is the chain
    dF -> (dR, d bb) -> d eb (Daleckii-Krein) -> de -> ds = D_alg de -> d tau. */
-#include <float.h>
 #include <math.h>
-#include <string.h>
 
 #include "material_aniso.h"
 #include "tensor.h"

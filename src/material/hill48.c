@@ -61,20 +61,19 @@
    nd -> Q nd, Cp^{-1} -> Q Cp^{-1} Q^T) gives tau -> Q tau Q^T.
 
    The kinematics (polar decomposition, trial log strain in the frame, flow update, the chain of
-   the tangent) are src/material/aniso.c's, shared with yld91. The first part of this file is
-   the model on plain arrays (include/material_hill48.h); the
-   second is the material type "hill48": its options (prefix material_), view and kernel table;
-   elasticity, hardening and their options are J2's (material_j2.h). */
+   the tangent) are src/material/aniso.c's, shared with yld91; this file holds the return map in
+   stress space. The first part of this file is the model on plain arrays
+   (include/material_hill48.h); the second is the material type "hill48": its options (prefix
+   material_), view and kernel table; elasticity, hardening and their options are J2's
+   (material_j2.h). */
 #include <float.h>
 #include <math.h>
-#include <string.h>
 
 #include "material_aniso.h"
 #include "material_hill48.h"
 #include "material_impl.h"
 #include "options.h"
 #include "tensor.h"
-
 
 void Hill48FromR(double r0, double r45, double r90, double *F, double *G, double *H, double *L, double *M, double *N)
 {
@@ -234,9 +233,7 @@ static int hill_stress_return(const void *ctx, const double D[36], const double 
       ztr[i] = 0.0;
       for (int j = 0; j < 6; j++) ztr[i] += Phi[6 * j + i] * str[j];
     }
-    if (hill_return_map(hp, p, ztr, q_tr, ep_n, &lam_p, z, &q, &Hp)) {
-      return 1;
-    }
+    if (hill_return_map(hp, p, ztr, q_tr, ep_n, &lam_p, z, &q, &Hp)) return 1;
     *plastic = 1;
     /* s = Phi z; e_e = e_tr - lam P s */
     mv6(Phi, z, s);
@@ -278,7 +275,6 @@ static int hill_stress_return(const void *ctx, const double D[36], const double 
   }
   return 0;
 }
-
 
 int Hill48Update(const HillParams *hp, const double F[9], const double hn[HILL48_NHIST], double tau[9], double *dtau, double h[HILL48_NHIST], int *plastic)
 {

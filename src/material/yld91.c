@@ -56,9 +56,7 @@
 
    The first part of this file is the model on plain arrays (include/material_yld91.h); the
    second is the material type "yld91": its options (prefix material_), view and kernel table. */
-#include <float.h>
 #include <math.h>
-#include <string.h>
 
 #include "material_aniso.h"
 #include "material_impl.h"
