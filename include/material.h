@@ -66,6 +66,8 @@ PetscErrorCode MaterialGetKernel(Material mat, const MaterialKernel **k);
 /* Young's modulus of the elastic response (for penalties scaled by the body's stiffness); 0 when
    the type does not know it */
 PetscErrorCode MaterialGetYoungModulus(Material mat, PetscReal *E);
+/* the type's name ("j2", ...); valid after MaterialSetFromOptions, owned by mat */
+PetscErrorCode MaterialGetType(Material mat, const char **type);
 PetscErrorCode MaterialView(Material mat, PetscViewer v);
 PetscErrorCode MaterialDestroy(Material *mat);
 #endif

@@ -46,3 +46,8 @@ check "$OUT/ref" "$OUT/np" 8 "1-rank checkpoint continued on 2 ranks"
 # 4. a checkpoint of another case is refused with a clear error
 run 1 -output_dir "$OUT/bad" -box_cells 4,4,2 -restart "$OUT/np/checkpoint.h5" >"$OUT/bad.log" 2>&1 </dev/null
 grep -q "atrito: error: -restart .*not the same mesh or case" "$OUT/bad.log" && ok "a checkpoint of another mesh is refused: $(grep -o 'atrito: error.*' "$OUT/bad.log" | cut -c1-120)" || not_ok "a checkpoint of another mesh was not refused"
+# another material type of the same history width (7 values: j2, hill48, yld91), on 2 ranks
+$MPI 2 $A $CASE -output_dir "$OUT/badmat" -material_type hill48 -restart "$OUT/np/checkpoint.h5" >"$OUT/badmat.log" 2>&1 </dev/null
+rc=$?
+[ "$rc" -ne 0 ] && [ "$(grep -c '^atrito: error' "$OUT/badmat.log")" -eq 1 ] && grep -q "atrito: error: -restart .*the checkpoint's material is j2, this case's -material_type hill48" "$OUT/badmat.log" &&
+  ok "a checkpoint of another material type is refused (np=2, exit $rc): $(grep -o 'atrito: error.*' "$OUT/badmat.log" | cut -c1-140)" || not_ok "a checkpoint of another material type was not refused (exit $rc)"

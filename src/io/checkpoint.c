@@ -5,6 +5,7 @@
    version. It is written to checkpoint.h5.tmp and renamed: a run killed at any moment leaves the
    previous checkpoint whole. */
 #include <stdio.h>
+#include <string.h>
 #include <hdf5.h>
 #include "results.h"
 
@@ -124,6 +125,43 @@ static PetscErrorCode Attr(hid_t file, const char *name, PetscBool write, double
 }
 
 /* the whole committed state, written (write) or read */
+/* the material type, a string attribute: written; on reading compared with this case's where the
+   checkpoint has it (the history of another type of the same width would be read without a word,
+   and the run go on with another model's state) */
+static PetscErrorCode MaterialTypeAttr(hid_t file, PetscBool write, const char *type, MPI_Comm comm, const char *path)
+{
+  char   have[64] = "";
+  hid_t  st, sp, a;
+  size_t n = strlen(type);
+
+  PetscFunctionBeginUser;
+  PetscCheck(n > 0 && n < sizeof(have), comm, PETSC_ERR_ARG_OUTOFRANGE, "material type name of %d characters", (int)n);
+  st = H5Tcopy(H5T_C_S1);
+  CheckH5(st, "HDF5: cannot make a string type for '%s'", path);
+  if (write) {
+    CheckH5(H5Tset_size(st, n + 1), "HDF5: cannot size a string type for '%s'", path);
+    sp = H5Screate(H5S_SCALAR);
+    a  = H5Acreate2(file, "material_type", st, sp, H5P_DEFAULT, H5P_DEFAULT);
+    CheckH5(a, "HDF5: cannot create attribute material_type in '%s'", path);
+    CheckH5(H5Awrite(a, st, type), "HDF5: cannot write attribute material_type in '%s'", path);
+    H5Sclose(sp);
+    H5Aclose(a);
+  } else if (H5Aexists(file, "material_type") > 0) {
+    CheckH5(H5Tset_size(st, sizeof(have)), "HDF5: cannot size a string type for '%s'", path);
+    a = H5Aopen(file, "material_type", H5P_DEFAULT);
+    CheckH5(a, "checkpoint '%s': cannot open attribute material_type", path);
+    hid_t ft = H5Aget_type(a);
+    PetscCheck(H5Tget_class(ft) == H5T_STRING && H5Tget_size(ft) < sizeof(have), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the attribute material_type is not a short string", path);
+    H5Tclose(ft);
+    CheckH5(H5Aread(a, st, have), "HDF5: cannot read attribute material_type in '%s'", path);
+    H5Aclose(a);
+    have[sizeof(have) - 1] = '\0';
+    PetscCheck(!strcmp(have, type), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint's material is %s, this case's -material_type %s (not the same case)", path, have, type);
+  }
+  H5Tclose(st);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, CheckpointInfo *ci, const char *path)
 {
   const Mesh *pb = problem->mesh;
@@ -151,6 +189,11 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
   for (int k = 0; k < 11; k++) {
     PetscCall(Attr(file, names[k], write, &a[k], path));
     PetscCheck(write || k || a[0] == CKPT_VERSION, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: checkpoint format %d, this program reads format %d", path, (int)a[0], CKPT_VERSION);
+  }
+  {
+    const char *mtype;
+    PetscCall(MaterialGetType(problem->material, &mtype));
+    PetscCall(MaterialTypeAttr(file, write, mtype, pb->comm, path));
   }
   if (!write) {
     PetscCheck(a[7] == pb->nv_global && a[8] == pb->ne_global && a[9] == nsg, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint has %" PetscInt_FMT " vertices, %" PetscInt_FMT " cells and %" PetscInt_FMT " slave nodes, this case %" PetscInt_FMT ", %" PetscInt_FMT " and %" PetscInt_FMT " (not the same mesh or case)", path, (PetscInt)a[7], (PetscInt)a[8], (PetscInt)a[9], pb->nv_global, pb->ne_global, nsg);

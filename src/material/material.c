@@ -132,6 +132,15 @@ PetscErrorCode MaterialGetKernel(Material mat, const MaterialKernel **k)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode MaterialGetType(Material mat, const char **type)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(mat && type, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "null pointer argument");
+  PetscCheck(mat->type_name[0], mat->comm, PETSC_ERR_ORDER, "material has no type: call MaterialSetFromOptions() first");
+  *type = mat->type_name;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MaterialView(Material mat, PetscViewer v)
 {
   PetscBool ascii;
