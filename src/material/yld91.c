@@ -48,8 +48,10 @@
    no decrease (the round-off floor), when |r| <= 1e3 rtol sigma_e(s_tr); otherwise the return map
    fails (the step is retried smaller). The elastic strain e_e = e_tr - dl n.
 
-   Consistent tangent: with Mi = (I + 2G dl H)^{-1},
-       D_alg = Mi D - 2G (Mi n)(n^T Mi D) / (2G n^T Mi n + H').
+   Consistent tangent: the converged equations linearised in e_tr (s_tr = D e_tr),
+       [I + 2G dl H, 2G n; n^T, -H'] [ds/de_tr; d dl/de_tr] = [D; 0],
+   solved for the six columns at once: D_alg = ds/de_tr (= Mi D - 2G (Mi n)(n^T Mi D) /
+   (2G n^T Mi n + H') with Mi = (I + 2G dl H)^{-1}).
 
    r-values (plane stress, uniaxial tension sigma at angle th: s = sigma (cos^2, sin^2, 0, 0, 0,
    sqrt 2 sin cos)): the flow direction n gives r = (n11 sin^2 + n22 cos^2 - sqrt 2 n12 sin cos)
@@ -76,6 +78,16 @@ static inline double ipow(double x, int k)
   double r = 1.0;
   for (int i = 0; i < k; i++) r *= x;
   return r;
+}
+
+/* x^(1/m) for x >= 0: square roots where m is a power of two (2, 4, 8, 16, 32) */
+static inline double root_m(double x, int m)
+{
+  if ((m & (m - 1)) == 0) {
+    for (int k = m; k > 1; k >>= 1) x = sqrt(x);
+    return x;
+  }
+  return pow(x, 1.0 / m);
 }
 
 /* the transformation L from c1..c6 */
@@ -146,9 +158,9 @@ static double yld91_eval(const Yld91Params *yp, const double s[6], Yld91Point *p
   a[1]      = d23 / k;
   a[2]      = d31 / k;
   const double Phi = ipow(a[0], m) + ipow(a[1], m) + ipow(a[2], m);
-  pt->se           = k * pow(0.5 * Phi, 1.0 / m);
+  pt->se           = k * root_m(0.5 * Phi, m);
   if (!n) return pt->se;
-  pt->f = pow(pt->se / k, 1.0 - m) / (2.0 * m);
+  pt->f = pt->se / (k * m * Phi); /* (sigma_e/k)^(1-m) / (2m), with (sigma_e/k)^m = Phi/2 */
   /* phi_1 = m (a12^(m-1) - a31^(m-1)), phi_2 = m (a23^(m-1) - a12^(m-1)), phi_3 = m (a31^(m-1) - a23^(m-1)) */
   const double p[3]  = {m * (ipow(a[0], m - 1) - ipow(a[2], m - 1)), m * (ipow(a[1], m - 1) - ipow(a[0], m - 1)), m * (ipow(a[2], m - 1) - ipow(a[1], m - 1))};
   double       ne[6] = {pt->f * p[0], pt->f * p[1], pt->f * p[2], 0.0, 0.0, 0.0};
@@ -288,6 +300,17 @@ int Yld91ParamsSetup(Yld91Params *yp)
   return YLD91_OK;
 }
 
+/* the return map's Newton matrix d(r_s, r_f)/d(s, dl) = [I + c dl H, c n; n^T, -H'] (7x7) */
+static void newton_matrix(double c, double dl, const double Hs[36], const double n[6], double Hp, double J[49])
+{
+  for (int i = 0; i < 6; i++) {
+    for (int j = 0; j < 6; j++) J[7 * i + j] = (i == j ? 1.0 : 0.0) + c * dl * Hs[6 * i + j];
+    J[7 * i + 6] = c * n[i];
+    J[7 * 6 + i] = n[i];
+  }
+  J[48] = -Hp;
+}
+
 /* the return map's residual r = (s - s_tr + c dl n(s), sigma_e(s) - sigma_y(ep_n + dl)), c = 2G;
    n(s) and the point's data (pt) on output; returns |r|^2 */
 static double yld91_residual(const Yld91Params *yp, const double str[6], double c, double ep_n, const double s[6], double dl, Yld91Point *pt, double n[6], double r[7])
@@ -337,12 +360,7 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
     double J[49], d[7];
     yld91_hessian(yp, &pt, Hs);
     J2YieldStress(mp, ep_n + dl, &Hp);
-    for (int i = 0; i < 6; i++) {
-      for (int j = 0; j < 6; j++) J[7 * i + j] = (i == j ? 1.0 : 0.0) + c * dl * Hs[6 * i + j];
-      J[7 * i + 6] = c * n[i];
-      J[7 * 6 + i] = n[i];
-    }
-    J[48] = -Hp;
+    newton_matrix(c, dl, Hs, n, Hp, J);
     for (int i = 0; i < 7; i++) d[i] = -r[i];
     if (dense_solve(7, J, 1, d)) return 1;
     /* backtracking on psi = |r|^2 (Armijo, quadratic model, lambda in [0.1, 0.5] of the last) */
@@ -381,33 +399,13 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
   for (int i = 0; i < 6; i++) ee[i] = etr[i] - dl * n[i];
   *ep = ep_n + dl;
   if (Dalg) {
-    /* Mi = (I + c dl H)^{-1}; D_alg = Mi D - c (Mi n)(n^T Mi D) / (c n^T Mi n + H') */
-    double Mi[36], Mm[36], MD[36], Mn[6], nM[6], den = Hp;
-    for (int i = 0; i < 36; i++) {
-      Mm[i] = c * dl * Hs[i];
-      Mi[i] = 0.0;
-    }
-    for (int i = 0; i < 6; i++) {
-      Mm[7 * i] += 1.0;
-      Mi[7 * i] = 1.0;
-    }
-    if (dense_solve(6, Mm, 6, Mi)) return 1;
-    for (int i = 0; i < 6; i++)
-      for (int j = 0; j < 6; j++) {
-        double t = 0.0;
-        for (int l = 0; l < 6; l++) t += Mi[6 * i + l] * D[6 * l + j];
-        MD[6 * i + j] = t;
-      }
-    mv6(Mi, n, Mn);
-    for (int j = 0; j < 6; j++) {
-      double t = 0.0;
-      for (int i = 0; i < 6; i++) t += n[i] * MD[6 * i + j];
-      nM[j] = t;
-    }
-    for (int i = 0; i < 6; i++) den += c * n[i] * Mn[i];
-    if (!(den > 0.0) || !isfinite(den)) return 1;
-    for (int i = 0; i < 6; i++)
-      for (int j = 0; j < 6; j++) Dalg[6 * i + j] = MD[6 * i + j] - c * Mn[i] * nM[j] / den;
+    /* the return map's equations linearised in e_tr: J [ds/de_tr; ddl/de_tr] = [D; 0] */
+    double J[49], B[42];
+    newton_matrix(c, dl, Hs, n, Hp, J);
+    for (int i = 0; i < 36; i++) B[i] = D[i];
+    for (int j = 0; j < 6; j++) B[36 + j] = 0.0;
+    if (dense_solve(7, J, 6, B)) return 1;
+    for (int i = 0; i < 36; i++) Dalg[i] = B[i];
   }
   return 0;
 }
