@@ -204,7 +204,7 @@ static void test_derivatives(void)
         Hs[i] = 0;
         for (int j = 0; j < 6; j++) Hs[i] += H[6 * i + j] * s[j];
       }
-      ehom = fmax(ehom, fmax(fabs(sn - se) / se, fnorm(Hs, 6) * fnorm(s, 6) / (fnorm(H, 36) * fnorm(s, 6) + 1e-300) / 10));
+      ehom = fmax(ehom, fmax(fabs(sn - se) / se, fnorm(Hs, 6) / (fnorm(H, 36) * fnorm(s, 6))));
     }
     TU_CHECK(!st && eg < 1e-8 && eH < 1e-6 && ehom < 1e-12, "exponent %d, oblique axes: gradient %.1e and Hessian %.1e against central differences (relative; distinct, repeated, uniaxial, equibiaxial states), s.n = sigma_e and H s = 0 to %.1e",
              ms[k], eg, eH, ehom);
@@ -267,7 +267,7 @@ static void test_robust(void)
   const double       rd[3] = {1, 2, 0.5}, nd[3] = {-2, 1, 0};
   int                s0, s1, s2;
   const Yld91Params  yps[3] = {yld(swift(), 8, 0.3, 3.0, 0.5, rd, nd, &s0), yld(linear(150.0, 0.0), 12, 2.8, 0.4, 1.9, X1, Z1, &s1), yld(swift(), 8, 0.71, 0.58, 0.70, X1, Z1, &s2)};
-  int                nfail = 0, npl = 0, nre = 0, nrefail = 0;
+  int                nfail = 0, npl = 0, nrefail = 0;
   double             et = 0, eh = 0;
   for (int b = 0; b < 3; b++)
     for (int t = 0; t < 100; t++) {
@@ -290,14 +290,12 @@ static void test_robust(void)
         nrefail++;
         continue;
       }
-      nre++;
       et = fmax(et, rel(t2, tau, 9));
       eh = fmax(eh, fabs(h2[J2_HIST_EP] - h[J2_HIST_EP]) / h[J2_HIST_EP]);
     }
   TU_CHECK(!(s0 || s1 || s2) && nfail == 0 && npl >= 200 && nrefail == 0 && et < 1e-9 && eh < 1e-9,
            "large steps (|F - R| up to 0.5; exponents 8, 12, 8; oblique axes, perfect plasticity): %d failures, %d plastic; evaluated again with no increment: %d failures, stress %.1e, plastic strain %.1e",
            nfail, npl, nrefail, et, eh);
-  (void)nre;
 }
 
 /* ---------- (6) objectivity ---------- */

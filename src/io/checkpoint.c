@@ -124,7 +124,6 @@ static PetscErrorCode Attr(hid_t file, const char *name, PetscBool write, double
   PetscFunctionReturn(0);
 }
 
-/* the whole committed state, written (write) or read */
 /* the material type, a string attribute: written; on reading compared with this case's where the
    checkpoint has it (the history of another type of the same width would be read without a word,
    and the run go on with another model's state) */
@@ -162,6 +161,7 @@ static PetscErrorCode MaterialTypeAttr(hid_t file, PetscBool write, const char *
   PetscFunctionReturn(0);
 }
 
+/* the whole committed state, written (write) or read */
 static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, CheckpointInfo *ci, const char *path)
 {
   const Mesh *pb = problem->mesh;

@@ -63,21 +63,23 @@ void AnisoFromMandel(const double v[6], double T[9])
   T[1] = T[3] = v[5] / SQ2;
 }
 
-/* T: the Mandel form of S -> M S M^T (columns: the images of the Mandel basis tensors) */
+/* T: the Mandel form of S -> M S M^T, in closed form: with (i, j) the index pair of a Mandel row,
+   (p, q) that of a column, w = 1 or sqrt 2 (normal or shear row) and c = 1/2 or 1/sqrt 2 (normal
+   or shear column), T_row,col = w c (M_ip M_jq + M_iq M_jp) */
 void AnisoMandelRotation(const double M[9], double T[36])
 {
-  for (int j = 0; j < 6; j++) {
-    double e[6] = {0, 0, 0, 0, 0, 0}, S[9], B[9], v[6], Y[9];
-    e[j] = 1.0;
-    AnisoFromMandel(e, S);
-    t3_mult(S, M, Y);
-    t3_mul(M, Y, B);
-    AnisoToMandel(B, v);
-    for (int i = 0; i < 6; i++) T[6 * i + j] = v[i];
+  static const int pi[6] = {0, 1, 2, 1, 2, 0}, pj[6] = {0, 1, 2, 2, 0, 1};
+  for (int row = 0; row < 6; row++) {
+    const int    i = pi[row], j = pj[row];
+    const double w = row < 3 ? 1.0 : SQ2;
+    for (int col = 0; col < 6; col++) {
+      const int    p = pi[col], q = pj[col];
+      const double c = col < 3 ? 0.5 : 1.0 / SQ2;
+      T[6 * row + col] = w * c * (M[3 * i + p] * M[3 * j + q] + M[3 * i + q] * M[3 * j + p]);
+    }
   }
 }
 
-/* B = M^T S M (S symmetric; B symmetrized) */
 static void congruence_t(const double M[9], const double S[9], double B[9])
 {
   double Y[9];

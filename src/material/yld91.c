@@ -114,63 +114,52 @@ static void mv6(const double M[36], const double x[6], double y[6])
   }
 }
 
-/* T, the Mandel form of S -> Q S Q^T (the closed form of AnisoMandelRotation): with (i, j) the
-   index pair of a Mandel row, (p, q) that of a column, w = 1 or sqrt 2 (normal or shear row)
-   and c = 1/2 or 1/sqrt 2 (normal or shear column), T_row,col = w c (Q_ip Q_jq + Q_iq Q_jp) */
-static void mandel_rotation(const double Q[9], double T[36])
-{
-  static const int pi[6] = {0, 1, 2, 1, 2, 0}, pj[6] = {0, 1, 2, 2, 0, 1};
-  for (int row = 0; row < 6; row++) {
-    const int    i = pi[row], j = pj[row];
-    const double w = row < 3 ? 1.0 : SQ2;
-    for (int col = 0; col < 6; col++) {
-      const int    p = pi[col], q = pj[col];
-      const double c = col < 3 ? 0.5 : 1.0 / SQ2;
-      T[6 * row + col] = w * c * (Q[3 * i + p] * Q[3 * j + q] + Q[3 * i + q] * Q[3 * j + p]);
-    }
-  }
-}
-
 /* what the return map keeps of an evaluation at s: sigma_e, the scale k, the scaled principal
-   differences a, the gradient factor f, the rotation T of the eigenbasis and the gradient nt with
-   respect to S~ (frame, Mandel) */
+   differences a, the eigenvectors Q of S~; with the gradient also the factor f, the rotation T of
+   the eigenbasis and the gradient nt with respect to S~ (frame, Mandel) */
 typedef struct {
-  double se, k, f, a[3], T[36], nt[6];
+  double se, k, Phi, a[3], Q[9], f, T[36], nt[6];
 } Yld91Point;
 
-/* sigma_e at s; with n not NULL also n = d sigma_e / ds and the data of the Hessian in pt */
-static double yld91_eval(const Yld91Params *yp, const double s[6], Yld91Point *pt, double n[6])
+/* sigma_e at s, and in pt the data of its derivatives */
+static double yld91_eval(const Yld91Params *yp, const double s[6], Yld91Point *pt)
 {
   const int m = yp->m;
-  double    St[6], S3[9], Sl[3], Q[9];
+  double    St[6], S3[9], Sl[3];
   mv6(yp->L, s, St);
   AnisoFromMandel(St, S3);
-  t3_sym_eig(S3, Sl, Q);
+  t3_sym_eig(S3, Sl, pt->Q);
   const double d12 = Sl[0] - Sl[1], d23 = Sl[1] - Sl[2], d31 = Sl[2] - Sl[0];
   const double k   = fmax(fabs(d12), fmax(fabs(d23), fabs(d31)));
   pt->k            = k;
   pt->se           = 0.0;
-  if (n)
-    for (int i = 0; i < 6; i++) n[i] = pt->nt[i] = 0.0;
   if (!(k > 0.0)) return 0.0;
   double *a = pt->a;
   a[0]      = d12 / k; /* (S1-S2)/k, (S2-S3)/k, (S3-S1)/k */
   a[1]      = d23 / k;
   a[2]      = d31 / k;
-  const double Phi = ipow(a[0], m) + ipow(a[1], m) + ipow(a[2], m);
-  pt->se           = k * root_m(0.5 * Phi, m);
-  if (!n) return pt->se;
-  pt->f = pt->se / (k * m * Phi); /* (sigma_e/k)^(1-m) / (2m), with (sigma_e/k)^m = Phi/2 */
-  /* phi_1 = m (a12^(m-1) - a31^(m-1)), phi_2 = m (a23^(m-1) - a12^(m-1)), phi_3 = m (a31^(m-1) - a23^(m-1)) */
-  const double p[3]  = {m * (ipow(a[0], m - 1) - ipow(a[2], m - 1)), m * (ipow(a[1], m - 1) - ipow(a[0], m - 1)), m * (ipow(a[2], m - 1) - ipow(a[1], m - 1))};
-  double       ne[6] = {pt->f * p[0], pt->f * p[1], pt->f * p[2], 0.0, 0.0, 0.0};
-  mandel_rotation(Q, pt->T); /* eigenbasis Mandel -> frame Mandel */
-  mv6(pt->T, ne, pt->nt);
-  mv6(yp->L, pt->nt, n);
+  pt->Phi   = ipow(a[0], m) + ipow(a[1], m) + ipow(a[2], m);
+  pt->se    = k * root_m(0.5 * pt->Phi, m);
   return pt->se;
 }
 
-/* the Hessian d2 sigma_e / ds2 at the point of yld91_eval (0 where sigma_e = 0) */
+/* n = d sigma_e / ds at the point of yld91_eval (0 where sigma_e = 0), and the data of the Hessian */
+static void yld91_gradient(const Yld91Params *yp, Yld91Point *pt, double n[6])
+{
+  const int     m = yp->m;
+  const double *a = pt->a;
+  for (int i = 0; i < 6; i++) n[i] = pt->nt[i] = 0.0;
+  if (!(pt->k > 0.0)) return;
+  pt->f = pt->se / (pt->k * m * pt->Phi); /* (sigma_e/k)^(1-m) / (2m), with (sigma_e/k)^m = Phi/2 */
+  /* phi_1 = m (a12^(m-1) - a31^(m-1)), phi_2 = m (a23^(m-1) - a12^(m-1)), phi_3 = m (a31^(m-1) - a23^(m-1)) */
+  const double p[3]  = {m * (ipow(a[0], m - 1) - ipow(a[2], m - 1)), m * (ipow(a[1], m - 1) - ipow(a[0], m - 1)), m * (ipow(a[2], m - 1) - ipow(a[1], m - 1))};
+  double       ne[6] = {pt->f * p[0], pt->f * p[1], pt->f * p[2], 0.0, 0.0, 0.0};
+  AnisoMandelRotation(pt->Q, pt->T); /* eigenbasis Mandel -> frame Mandel */
+  mv6(pt->T, ne, pt->nt);
+  mv6(yp->L, pt->nt, n);
+}
+
+/* the Hessian d2 sigma_e / ds2 at the point of yld91_gradient (0 where sigma_e = 0) */
 static void yld91_hessian(const Yld91Params *yp, const Yld91Point *pt, double H[36])
 {
   const int     m = yp->m;
@@ -220,9 +209,8 @@ double Yld91Effective(const Yld91Params *yp, const double s[6], double n[6], dou
 {
   Yld91Point   pt;
   double       nb[6];
-  const double se = yld91_eval(yp, s, &pt, (n || H) ? nb : NULL);
-  if (n)
-    for (int i = 0; i < 6; i++) n[i] = se > 0.0 ? nb[i] : 0.0;
+  const double se = yld91_eval(yp, s, &pt);
+  if (n || H) yld91_gradient(yp, &pt, n ? n : nb);
   if (H) yld91_hessian(yp, &pt, H);
   return se;
 }
@@ -315,8 +303,9 @@ static void newton_matrix(double c, double dl, const double Hs[36], const double
    n(s) and the point's data (pt) on output; returns |r|^2 */
 static double yld91_residual(const Yld91Params *yp, const double str[6], double c, double ep_n, const double s[6], double dl, Yld91Point *pt, double n[6], double r[7])
 {
-  const double se = yld91_eval(yp, s, pt, n);
+  const double se  = yld91_eval(yp, s, pt);
   double       psi = 0.0;
+  yld91_gradient(yp, pt, n);
   for (int i = 0; i < 6; i++) r[i] = s[i] - str[i] + c * dl * n[i];
   r[6] = se - J2YieldStress(&yp->base, ep_n + dl, NULL);
   for (int i = 0; i < 7; i++) psi += r[i] * r[i];
@@ -329,10 +318,9 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
   const Yld91Params *yp = (const Yld91Params *)ctx;
   const J2Params    *mp = &yp->base;
   const double       c  = 2.0 * mp->G;
-  double             n[6], Hs[36], Hp, dl = 0.0, r[7];
+  double             n[6], Hs[36], Hp, dl = 0.0, r[7], psi;
   Yld91Point         pt;
-  double             psi   = yld91_residual(yp, str, c, ep_n, str, 0.0, &pt, n, r);
-  const double       se_tr = pt.se;
+  const double       se_tr = yld91_eval(yp, str, &pt);
 
   *plastic = 0;
   *ep      = ep_n;
@@ -345,7 +333,12 @@ static int yld91_stress_return(const void *ctx, const double D[36], const double
       for (int i = 0; i < 36; i++) Dalg[i] = D[i];
     return 0;
   }
-  *plastic         = 1;
+  /* the residual at (s_tr, 0): r_s = 0 */
+  *plastic = 1;
+  yld91_gradient(yp, &pt, n);
+  for (int i = 0; i < 6; i++) r[i] = 0.0;
+  r[6] = se_tr - J2YieldStress(mp, ep_n, NULL);
+  psi  = r[6] * r[6];
   const double tol = mp->rtol * se_tr;
   int          conv = 0;
   for (int it = 0; it <= mp->maxit; it++) {
