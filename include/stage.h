@@ -2,7 +2,7 @@
    duration, its first and largest increment, the tools present and the Dirichlet conditions
    active in it, the tools it releases by force (-stage_<s>_duration, _steps, _dt_max, _tools,
    _bcs, _release, _release_mode: each released tool driven by its falling force, or removed and
-   its nodal forces falling). Without -stage_names the
+   its nodal forces falling; _predictor: the start of its steps, default -load_predictor). Without -stage_names the
    process is one stage, "load", of duration 1: the process time is the load parameter of the
    -load_* options. Options only; the stepper enters the stages (stepper.c). */
 #ifndef ATRITO_STAGE_H
@@ -30,6 +30,7 @@ typedef struct {
   char      release[STAGE_MAX_TOOLS][64];
   PetscInt  release_mode;          /* -stage_<s>_release_mode: STAGE_RELEASE_TOOL or _NODES       */
   PetscBool tool_release[STAGE_MAX_TOOLS];                        /* after StagesSetUp        */
+  PetscInt  predictor;             /* -stage_<s>_predictor: a Predictor (stepper.h), or -1: -load_predictor */
 } Stage;
 
 typedef struct {

@@ -29,6 +29,11 @@ typedef struct {
   PetscReal stall_factor;  /* its value stall_its iterations earlier (0: no test)              */
   PetscReal force_tol;     /* -newton_force_tol: Newton has converged also when |R| is below this
                               fraction of the internal forces' scale (ProblemForceScale; 0: no) */
+  PetscReal floor_tol;     /* -newton_floor_tol: a solve whose line search fails on a Newton
+                              correction below this fraction of the model's size has converged
+                              (the residual at its floor; 0: never)                          */
+  PetscReal model_size;    /* the diagonal of the mesh's bounding box                          */
+  PetscInt  nfloor;        /* solves accepted so                                              */
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */
   PetscInt  keep_contact;  /* the first Newton iteration holds the committed pressed nodes closed:
                               0 no, 1 on frictionless tools, 2 on every tool (-newton_keep_contact) */

@@ -236,24 +236,35 @@ for f in history.csv contact.csv; do cmp8 "$OUT/relnod_np1/$f" "$OUT/relnodstop/
 atrito_rc 1 relnod_jac $NOD -output_interval 0 -restart "$OUT/relnodstop/checkpoint.h5" -load_max_steps 8 -snes_test_jacobian
 pycheck snes_test_jacobian "$OUT/relnod_jac.log" 4 1e-6 "release by nodal forces, steps 7 and 8 (stopped there by -load_max_steps)"
 
-# 7c. a force-driven tool released by its nodal forces (cases/forcetool_holder.opts, the holder
-# driven by -1000 N along z, then released): its force follows the line, its unknown holds its
-# position through the release, 1 and 2 ranks agree (the die's normal force smoothed over 1e-4: with
-# the plain law the strip's nodes leave the die at zero force as the holder's load vanishes, and
-# round-off decides the cuts there)
-FHN="-options_file cases/forcetool_holder.opts -stage_names press,rel -stage_press_steps 5 -stage_rel_steps 4 -stage_rel_release holder -stage_rel_release_mode nodes -contact_gap_smoothing 1e-4"
-for np in 1 2; do atrito $np fhnod_np$np $FHN; done
-$PY - "$OUT/fhnod_np1/contact.csv" <<'PYEOF'
+# 7c. a stage's own predictor (-stage_<s>_predictor): the tangent predictor in the lift stage
+# only; the steps' solutions do not depend on the predictor: the run ends as the default one
+# (1e-8), with other Newton iterations in the lift stage only
+atrito 1 pred_lift $CASE -stage_lift_predictor tangent
+$PY tests/compare_csv.py "$OUT/strip_np1/history.csv" "$OUT/pred_lift/history.csv" --rtol 1e-8 --atol 1e-12 --skip 'residual_*,newton_its' --label "-stage_lift_predictor tangent against the default predictor, history.csv, 1e-8"
+$PY - "$OUT/strip_np1/history.csv" "$OUT/pred_lift/history.csv" <<'PYEOF'
 import csv, sys
-rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["tool"] == "holder"]
-rel = [(float(r["time"]), float(r["fz"]), float(r["dz"])) for r in rows if r["stage"] == "rel"]
-dz0 = [float(r["dz"]) for r in rows if r["stage"] == "press"][-1]
-err = max(abs(fz + 1000.0 * (2.0 - t)) for t, fz, _ in rel) / 1000.0
-ddz = max(abs(dz - dz0) for _, _, dz in rel)
-good = len(rel) >= 4 and err < 1e-12 and ddz == 0
-print(("ok - " if good else "not ok - ") + f"force-driven holder released by its nodal forces: fz follows -1000 (2 - t) to 1e-12 (largest error {err:.2g} of it), its dz held at {dz0:.6g} (largest change {ddz:.2g})")
+a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+diff = sorted({r["stage"] for r, q in zip(a, b) if r["newton_its"] != q["newton_its"]})
+print(("ok - " if diff == ["lift"] else "not ok - ") + f"-stage_lift_predictor tangent: Newton iterations differ in the stages {diff} (lift only)")
 PYEOF
-for f in history.csv contact.csv; do cmp8 "$OUT/fhnod_np1/$f" "$OUT/fhnod_np2/$f" "force-driven holder released by its nodal forces np=1 against np=2, $f, 1e-8"; done
+
+# 7d. the residual's floor (-newton_floor_tol): with the residual tolerances and the step-length
+# test off (-snes_rtol 1e-30 -snes_atol 0 -snes_stol 0) a solve can end only by a line search that
+# finds no decrease; one whose Newton correction is below 1e-9 of the model's size has converged,
+# and the run gives the default tolerances' run (1e-8), at 1 and 2 ranks; with the floor off the
+# first step is cut until the run stops
+FLOOR="-snes_rtol 1e-30 -snes_atol 0 -snes_stol 0"
+for np in 1 2; do
+  atrito $np floor_np$np $CASE $FLOOR
+  n=$(grep -o 'residual floor: [0-9]*' "$OUT/floor_np$np.log" | grep -o '[0-9]*$')
+  steps=$(grep -o 'done: [0-9]* steps' "$OUT/floor_np$np.log" | grep -o '[0-9]*' | head -n 1)
+  if [ -n "$n" ] && [ -n "$steps" ] && [ "$n" -ge "$steps" ] && ! grep -q retrying "$OUT/floor_np$np.log"; then ok "residual floor (np=$np): $n solves accepted at the floor in $steps steps, no cut"
+  else not_ok "residual floor (np=$np): $(grep -E '^(done|residual floor)' "$OUT/floor_np$np.log" | tr '\n' ' ')"; fi
+  $PY tests/compare_csv.py "$OUT/strip_np1/history.csv" "$OUT/floor_np$np/history.csv" --rtol 1e-8 --atol 1e-12 --skip 'residual_*,newton_its' --label "residual floor (np=$np) against the default tolerances, history.csv, 1e-8"
+done
+atrito_rc 1 floor_off $CASE $FLOOR -newton_floor_tol 0
+if [ "$RC" -ne 0 ] && [ "$RC" -lt 124 ] && grep -q 'DIVERGED_LINE_SEARCH' "$OUT/floor_off.log"; then ok "residual floor off (-newton_floor_tol 0): the run stops, $(grep -o 'after [0-9]* cuts' "$OUT/floor_off.log")"
+else not_ok "residual floor off: exit $RC, $(tail -n 1 "$OUT/floor_off.log")"; fi
 
 # 8. bad input: one line naming the option
 bad() { # bad EXPECTED NP ARGS...
@@ -277,4 +288,6 @@ bad "-tool_ball_path and -tool_ball_amplitude are exclusive" 1 -options_file cas
 bad "-stage_release_release: unknown tool 'die'" 1 $REL -stage_release_release die
 bad "-stage_springback_release: tool 'punch' is not present in the stage" 2 $REL -stage_springback_release punch
 bad "Unknown option both for -stage_release_release_mode" 2 $REL -stage_release_release_mode both
+bad "Unknown option secant for -stage_lift_predictor" 1 $CASE -stage_lift_predictor secant
+bad "-newton_floor_tol 0.1 must lie in [0, 1e-3)" 1 $CASE -newton_floor_tol 0.1
 bad "-stage_hold_tools: tool holder is removed at time 1. while a force of -1000. along z still drives it" 1 -options_file cases/forcetool_holder.opts -stage_names press,hold -stage_hold_tools die

@@ -60,6 +60,7 @@ PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_ste
     sg->s[0].dt_min = dt_min;
     sg->s[0].ntools = sg->s[0].nbcs = -1;
     sg->s[0].nrelease = -1;
+    sg->s[0].predictor = -1;
     sg->T           = 1;
     PetscFunctionReturn(0);
   }
@@ -102,6 +103,13 @@ PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_ste
       PetscInt          mode    = STAGE_RELEASE_TOOL;
       PetscCall(PetscOptionsEList("-release_mode", "How -stage_<s>_release releases its tools: tool (the tool driven by its falling force) or nodes (the tool removed at the stage's start, the contact force of each of its nodes a load falling linearly to zero)", NULL, modes, 2, modes[mode], &mode, NULL));
       s->release_mode = mode;
+    }
+    if (!ierr) {
+      /* the order of Predictor (stepper.h) after "default" */
+      const char *const preds[] = {"default", "none", "extrapolate", "tangent", "auto"};
+      PetscInt          p       = 0;
+      PetscCall(PetscOptionsEList("-predictor", "Start of each step of the stage: default (-load_predictor), none (the committed state), extrapolate, tangent or auto, as -load_predictor", NULL, preds, 5, preds[p], &p, NULL));
+      s->predictor = p - 1;
     }
     PetscOptionsEnd();
     PetscCall(ierr);

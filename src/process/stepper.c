@@ -24,6 +24,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->ksp_target    = 0;
   st->stall_factor  = 0.9;
   st->force_tol     = 0;
+  st->floor_tol     = 1e-9;
   st->max_steps     = 100000;
   st->predictor     = PREDICTOR_AUTO;
   st->chatter_check = PETSC_TRUE;
@@ -51,6 +52,8 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     PetscCall(PetscOptionsReal("-newton_stall_factor", "See -newton_stall_its", NULL, st->stall_factor, &st->stall_factor, NULL));
     PetscCall(PetscOptionsReal("-newton_force_tol", "Newton has converged also when |R| is below this fraction of the internal forces' scale, sqrt(sum over the elements of |f_e|^2) (for steps whose initial residual is itself near equilibrium, where -snes_rtol asks for round-off; 0: -snes_rtol and -snes_atol only)", NULL, st->force_tol, &st->force_tol, NULL));
     PetscCheck(st->force_tol >= 0 && st->force_tol < 1, comm, PETSC_ERR_USER_INPUT, "-newton_force_tol %g must lie in [0, 1)", (double)st->force_tol);
+    PetscCall(PetscOptionsReal("-newton_floor_tol", "A Newton solve whose line search fails has converged when the Newton correction's largest component is below this fraction of the model's size (the diagonal of the mesh's box): the residual is at the floor that the local solvers' tolerances leave, and no step along the correction lowers it (0: the step is cut instead)", NULL, st->floor_tol, &st->floor_tol, NULL));
+    PetscCheck(st->floor_tol >= 0 && st->floor_tol < 1e-3, comm, PETSC_ERR_USER_INPUT, "-newton_floor_tol %g must lie in [0, 1e-3)", (double)st->floor_tol);
     {
       const char *preds[] = {"none", "extrapolate", "tangent", "auto", "Predictor", "PREDICTOR_", NULL};
       PetscInt    p       = (PetscInt)st->predictor;
@@ -430,6 +433,12 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   }
   PetscCall(SNESSetConvergenceTest(snes, NewtonConverged, st, NULL));
   {
+    PetscReal gmin[3] = {0, 0, 0}, gmax[3] = {0, 0, 0};
+    PetscCall(DMGetBoundingBox(pb->mesh->dm, gmin, gmax));
+    st->model_size = PetscSqrtReal(PetscSqr(gmax[0] - gmin[0]) + PetscSqr(gmax[1] - gmin[1]) + PetscSqr(gmax[2] - gmin[2]));
+    st->nfloor     = 0;
+  }
+  {
     PetscBool preonly;
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
     st->kry_on = preonly ? PETSC_FALSE : PETSC_TRUE;
@@ -507,8 +516,9 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       /* the extrapolation of the last two converged states only within one linear piece of every
          curve (with -load_kinks): at a kink or a stage's start, the tangent predictor (auto) or
          the committed state */
-      const PetscBool kink        = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0 && AtKink(st, lam_c);
-      const PetscBool extrapolate = (st->predictor == PREDICTOR_EXTRAPOLATE || st->predictor == PREDICTOR_AUTO) && dl_prev > 0 && !kink;
+      const Predictor pred        = sg->predictor >= 0 ? (Predictor)sg->predictor : st->predictor; /* -stage_<s>_predictor */
+      const PetscBool kink        = (pred == PREDICTOR_EXTRAPOLATE || pred == PREDICTOR_AUTO) && dl_prev > 0 && AtKink(st, lam_c);
+      const PetscBool extrapolate = (pred == PREDICTOR_EXTRAPOLATE || pred == PREDICTOR_AUTO) && dl_prev > 0 && !kink;
       if (kink && st->kink_predictor == PREDICTOR_NONE) {
         /* the committed state (U = Uc already) */
       } else if (kink && st->kink_predictor == PREDICTOR_AUTO) {
@@ -530,7 +540,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         }
         if (!ok || !(rt < rc)) PetscCall(VecCopy(pb->Uc, pb->U));
         pb->ndomain_err = 0;
-      } else if (st->predictor == PREDICTOR_TANGENT || kink || (st->predictor == PREDICTOR_AUTO && !extrapolate)) {
+      } else if (pred == PREDICTOR_TANGENT || kink || (pred == PREDICTOR_AUTO && !extrapolate)) {
         PetscBool ok;
         PetscCall(TangentPredictor(st, pb, R, W, lam_c, h, &ok));
         if (!ok) PetscCall(VecCopy(pb->Uc, pb->U));
@@ -601,6 +611,27 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         if (st->kry_on && st->ksp_target > 0) PetscCall(KSPSetTolerances(ksp, st->ksp_rtol0, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT)); /* (-newton_ksp_target) */
         PetscCall(SNESGetConvergedReason(snes, &reason));
         PetscCall(SNESGetIterationNumber(snes, &its1));
+        if (reason == SNES_DIVERGED_LINE_SEARCH && st->floor_tol > 0) {
+          /* the residual's floor (-newton_floor_tol): the line search found no decrease along a
+             Newton correction far below any length of the model. The residual is then at the level
+             that the local solvers' tolerances (return maps, enhanced parameters) leave in it, and
+             the state is the solution to within that correction; cutting the step cannot help, since
+             a smaller step starts from the same floor (seen: the U-channel's springback stage, which
+             starts in equilibrium at |R| 1.5e-8 N and whose Newton correction of 3e-8 mm raised |R|
+             at every length down to 1e-13 of itself). The direction is the line search's Y, left
+             unscaled by the failed search. */
+          SNESLineSearch ls;
+          Vec            X, F, Y, Wl, G;
+          PetscReal      ymax;
+          PetscCall(SNESGetLineSearch(snes, &ls));
+          PetscCall(SNESLineSearchGetVecs(ls, &X, &F, &Y, &Wl, &G));
+          PetscCall(VecNorm(Y, NORM_INFINITY, &ymax));
+          if (ymax <= st->floor_tol * st->model_size) {
+            reason = SNES_CONVERGED_SNORM_RELATIVE;
+            st->nfloor++;
+            PetscCall(PetscInfo(snes, "converged at the residual's floor: Newton correction %g <= %g\n", (double)ymax, (double)(st->floor_tol * st->model_size)));
+          }
+        }
         if (st->aug_loops == 0) r0 = st->r_true0 >= 0 ? st->r_true0 : rhist[0];
         st->r_true0 = -1;
         its += its1;
@@ -718,6 +749,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(pb->comm, "done: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " cuts, %.2f s\n", step, total_its, total_cuts, t1 - t0));
   if (total_soft) PetscCall(PetscPrintf(pb->comm, "augmented Lagrangian: %" PetscInt_FMT " steps retried at softer penalties (-contact_augmented_soften)\n", total_soft));
+  if (st->nfloor) PetscCall(PetscPrintf(pb->comm, "residual floor: %" PetscInt_FMT " Newton solves ended by a failed line search on a correction below %g, accepted as converged (-newton_floor_tol)\n", st->nfloor, (double)(st->floor_tol * st->model_size)));
   if (st->nls) {
     PetscInt relaxed, reverted, trials;
     PetscCall(NewtonLineSearchGetCounts(st->nls, &relaxed, &reverted, &trials));
