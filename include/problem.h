@@ -56,6 +56,11 @@ typedef struct {
   PetscInt  bad_cell_id;   /* source id of the first failing element, for messages      */
   PetscInt  bad_status;
   PetscInt  bad_point;     /* its integration point (1..nqp) where the material names it, else 0 */
+  PetscReal trial_norm;    /* > 0 inside PETSc's backtracking line search (set by the stepper): an
+                              evaluation that fails (an element inverted, a return map or a
+                              projection that did not converge) returns a residual of this norm
+                              instead of a domain error, so that the search shortens the step    */
+  PetscInt  ntrial_fail;   /* such evaluations, counted                                          */
   PetscBool cutback;       /* an element's material asked for a smaller increment (a UMAT's PNEWDT
                               < 1) since the flag was last cleared: the step is cut, not searched */
 

@@ -34,6 +34,8 @@ typedef struct {
                               (the residual at its floor; 0: never)                          */
   PetscReal model_size;    /* the diagonal of the mesh's bounding box                          */
   PetscInt  nfloor;        /* solves accepted so                                              */
+  PetscBool domain_backtrack; /* -newton_domain_backtrack: a failed trial point of PETSc's
+                              backtracking search is rejected, not the end of the solve       */
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */
   PetscInt  keep_contact;  /* the first Newton iteration holds the committed pressed nodes closed:
                               0 no, 1 on frictionless tools, 2 on every tool (-newton_keep_contact) */

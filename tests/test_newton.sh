@@ -10,6 +10,7 @@
 # The force-relative Newton tolerance (-newton_force_tol; off by default): far below the relative
 # tolerance it changes nothing, loose it saves iterations and keeps the punch force, and it takes the
 # coarse U-channel with a 0.002 mm gap smoothing past the step where its draw stalls without it.
+# A failed trial point of the backtracking line search is rejected (-newton_domain_backtrack).
 cd "$(dirname "$0")/.." && . tests/lib.sh
 OUT=$(test_out newton)
 C=cases/hemisphere_frictionless.opts
@@ -149,3 +150,19 @@ atrito_rc 1 ucftol -options_file cases/numisheet93_uchannel_coarse.opts -output_
 [ $RC -ne 0 ] && grep -q -- "-load_max_steps 50 reached" "$OUT/ucftol.log" &&
   ok "-newton_force_tol 1e-7: the coarse U-channel with a 0.002 mm gap smoothing passes step 41 and reaches step 50" ||
   { not_ok "-newton_force_tol 1e-7: the coarse U-channel did not reach step 50 (exit $RC)"; tail -n 2 "$OUT/ucftol.log" | indent; }
+
+# A trial point of the backtracking line search where the residual cannot be evaluated
+# (-newton_domain_backtrack, default on): the seed case in steps of up to 4 mm, where Newton's full
+# steps invert elements at the pole, rejects such points (counted in the summary) and reaches the same
+# converged states as without (the same steps, contact forces to 1e-6), on 1 and 2 ranks alike (the
+# counts differ: the four steps that are cut iterate differently at round-off)
+BIG="-options_file $C -output_interval 0 -load_dt_max 0.1 -load_grow_its 7"
+atrito 1 dom1 $BIG && atrito 2 dom2 $BIG && atrito 1 dom0 $BIG -newton_domain_backtrack 0 && {
+  n1=$(grep -o 'line search: [0-9]* trial points' "$OUT/dom1.log" | grep -o '[0-9]*')
+  n2=$(grep -o 'line search: [0-9]* trial points' "$OUT/dom2.log" | grep -o '[0-9]*')
+  [ -n "$n1" ] && [ "$n1" -gt 0 ] && [ -n "$n2" ] && [ "$n2" -gt 0 ] && ! grep -q 'trial points' "$OUT/dom0.log" &&
+    ok "-newton_domain_backtrack: $n1 trial points rejected on 1 rank, $n2 on 2 ($(grep -o 'done: .*' "$OUT/dom1.log"); off: $(grep -o 'done: .*' "$OUT/dom0.log"))" ||
+    not_ok "-newton_domain_backtrack: rejected trial points '$n1' (np=1), '$n2' (np=2), off: $(grep -c 'trial points' "$OUT/dom0.log")"
+  $PY tests/compare_csv.py "$OUT/dom0/contact.csv" "$OUT/dom1/contact.csv" --rtol 1e-6 --atol 1e-9 --skip 'newton_its,residual_*,augmentations,fx,fy' --label "-newton_domain_backtrack against off, the same steps, contact.csv, 1e-6"
+  $PY tests/compare_csv.py "$OUT/dom1/contact.csv" "$OUT/dom2/contact.csv" --rtol 1e-8 --atol 1e-9 --skip 'residual_*' --label "-newton_domain_backtrack np=1 against np=2, contact.csv, 1e-8"
+}

@@ -25,6 +25,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->stall_factor  = 0.9;
   st->force_tol     = 0;
   st->floor_tol     = 1e-9;
+  st->domain_backtrack = PETSC_TRUE;
   st->max_steps     = 100000;
   st->predictor     = PREDICTOR_AUTO;
   st->chatter_check = PETSC_TRUE;
@@ -52,6 +53,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     PetscCall(PetscOptionsReal("-newton_stall_factor", "See -newton_stall_its", NULL, st->stall_factor, &st->stall_factor, NULL));
     PetscCall(PetscOptionsReal("-newton_force_tol", "Newton has converged also when |R| is below this fraction of the internal forces' scale, sqrt(sum over the elements of |f_e|^2) (for steps whose initial residual is itself near equilibrium, where -snes_rtol asks for round-off; 0: -snes_rtol and -snes_atol only)", NULL, st->force_tol, &st->force_tol, NULL));
     PetscCheck(st->force_tol >= 0 && st->force_tol < 1, comm, PETSC_ERR_USER_INPUT, "-newton_force_tol %g must lie in [0, 1)", (double)st->force_tol);
+    PetscCall(PetscOptionsBool("-newton_domain_backtrack", "In PETSc's backtracking line search a trial point where the residual cannot be evaluated (an element inverted, a return map or a contact projection that did not converge) is rejected and the step shortened, instead of ending the Newton solve and cutting the load step", NULL, st->domain_backtrack, &st->domain_backtrack, NULL));
     PetscCall(PetscOptionsReal("-newton_floor_tol", "A Newton solve whose line search fails has converged when the Newton correction's largest component is below this fraction of the model's size (the diagonal of the mesh's box): the residual is at the floor that the local solvers' tolerances leave, and no step along the correction lowers it (0: the step is cut instead)", NULL, st->floor_tol, &st->floor_tol, NULL));
     PetscCheck(st->floor_tol >= 0 && st->floor_tol < 1e-3, comm, PETSC_ERR_USER_INPUT, "-newton_floor_tol %g must lie in [0, 1e-3)", (double)st->floor_tol);
     {
@@ -343,6 +345,16 @@ static PetscErrorCode KeepEnd(SNESLineSearch ls, Vec X, Vec Y, PetscBool *change
   (void)Y;
   *changed = PETSC_FALSE;
   if (st->pb && st->pb->contact) PetscCall(ContactKeepCommitted(st->pb->contact, 0));
+  if (st->pb && st->domain_backtrack) {
+    /* -newton_domain_backtrack: in PETSc's backtracking search a failed trial evaluation reads as
+       a residual twice the iterate's (ProblemFormFunction); the other searches as before (the
+       watchdog's relaxed steps would take such a point) */
+    PetscBool bt;
+    PetscReal fnorm;
+    PetscCall(PetscObjectTypeCompare((PetscObject)ls, SNESLINESEARCHBT, &bt));
+    PetscCall(SNESLineSearchGetNorms(ls, NULL, &fnorm, NULL));
+    st->pb->trial_norm = (bt && fnorm > 0 && PetscIsNormalReal(fnorm)) ? 2 * fnorm : 0;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -607,6 +619,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
            runs of the seed punch with friction took 140 or 145 iterations) */
         if (aug) PetscCall(SNESSetForceIteration(snes, st->aug_loops > 0 ? PETSC_TRUE : PETSC_FALSE));
         PetscCall(SNESSolve(snes, NULL, pb->U));
+        pb->trial_norm = 0; /* (-newton_domain_backtrack: set by the line search's pre-check) */
         if (contact) PetscCall(ContactKeepCommitted(pb->contact, 0)); /* (a solve that ended before its first line search) */
         if (st->kry_on && st->ksp_target > 0) PetscCall(KSPSetTolerances(ksp, st->ksp_rtol0, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT)); /* (-newton_ksp_target) */
         PetscCall(SNESGetConvergedReason(snes, &reason));
@@ -749,6 +762,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(pb->comm, "done: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " cuts, %.2f s\n", step, total_its, total_cuts, t1 - t0));
   if (total_soft) PetscCall(PetscPrintf(pb->comm, "augmented Lagrangian: %" PetscInt_FMT " steps retried at softer penalties (-contact_augmented_soften)\n", total_soft));
+  if (pb->ntrial_fail) PetscCall(PetscPrintf(pb->comm, "line search: %" PetscInt_FMT " trial points where the residual could not be evaluated, rejected (-newton_domain_backtrack)\n", pb->ntrial_fail));
   if (st->nfloor) PetscCall(PetscPrintf(pb->comm, "residual floor: %" PetscInt_FMT " Newton solves ended by a failed line search on a correction below %g, accepted as converged (-newton_floor_tol)\n", st->nfloor, (double)(st->floor_tol * st->model_size)));
   if (st->nls) {
     PetscInt relaxed, reverted, trials;

@@ -189,7 +189,15 @@ PetscErrorCode ProblemFormFunction(SNES snes, Vec U, Vec F, void *ctx)
   PetscCall(PetscLogEventBegin(pb->ev_residual, 0, 0, 0, 0));
   PetscCall(Assemble(pb, U, pb->lambda, PETSC_TRUE, NULL, PETSC_FALSE));
   PetscCall(VecZeroEntries(F));
-  if (pb->ndomain_err) PetscCall(SNESSetFunctionDomainError(snes));
+  if (pb->ndomain_err && pb->trial_norm > 0 && !pb->cutback) {
+    /* a trial point of the line search outside the residual's domain: a residual larger than the
+       iterate's (trial_norm, twice its norm), so that the backtracking search rejects the point
+       and shortens the step, instead of ending the Newton solve and cutting the load step */
+    PetscInt N;
+    PetscCall(VecGetSize(F, &N));
+    PetscCall(VecSet(F, pb->trial_norm / PetscSqrtReal((PetscReal)N)));
+    pb->ntrial_fail++;
+  } else if (pb->ndomain_err) PetscCall(SNESSetFunctionDomainError(snes));
   else {
     Vec Fb = NULL;
     PetscCall(BodyGet(pb, F, pb->Fbv, PETSC_FALSE, &Fb));
