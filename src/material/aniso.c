@@ -80,6 +80,7 @@ void AnisoMandelRotation(const double M[9], double T[36])
   }
 }
 
+/* B = M^T S M (S symmetric; B symmetrized) */
 static void congruence_t(const double M[9], const double S[9], double B[9])
 {
   double Y[9];

@@ -333,14 +333,15 @@ static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, P
   PetscFunctionReturn(0);
 }
 
-/* the end of -newton_keep_contact: before the line search of the first Newton iteration (after its
-   Jacobian, so that -snes_test_jacobian compares that Jacobian with the residual it belongs to) */
-static PetscErrorCode KeepEnd(SNESLineSearch ls, Vec X, Vec Y, PetscBool *changed, void *ctx)
+/* the line search's pre-check, before every line search: the end of -newton_keep_contact (before
+   the line search of the first Newton iteration, after its Jacobian, so that -snes_test_jacobian
+   compares that Jacobian with the residual it belongs to), and the iterate's |R| for
+   -newton_domain_backtrack */
+static PetscErrorCode LineSearchPreCheck(SNESLineSearch ls, Vec X, Vec Y, PetscBool *changed, void *ctx)
 {
   Stepper *st = (Stepper *)ctx;
 
   PetscFunctionBeginUser;
-  (void)ls;
   (void)X;
   (void)Y;
   *changed = PETSC_FALSE;
@@ -457,7 +458,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   {
     SNESLineSearch ls;
     PetscCall(SNESGetLineSearch(snes, &ls));
-    PetscCall(SNESLineSearchSetPreCheck(ls, KeepEnd, st));
+    PetscCall(SNESLineSearchSetPreCheck(ls, LineSearchPreCheck, st));
     PetscCall(SNESLineSearchSetPostCheck(ls, TrialEnd, st));
   }
   PetscCall(SNESSetConvergenceTest(snes, NewtonConverged, st, NULL));
@@ -597,7 +598,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       if (aug) PetscCall(SNESGetTolerances(snes, &atol0, &rtol, &stol, &maxit, &maxf));
       /* the first Newton iteration of the step solves with the committed contact set: a node
          pressed in the committed state stays closed in its residual and its Jacobian whatever the
-         predictor's gap (ContactKeepCommitted; KeepEnd ends the keep before the first line search:
+         predictor's gap (ContactKeepCommitted; LineSearchPreCheck ends the keep before the first line search:
          the line search and every later iteration see the true law). The extrapolation leaves lightly pressed
          nodes a few micrometres off the tool (their committed penetration t_N/K_N is smaller than
          the predictor's error): open, they have no stiffness, and the plastic sheet's Newton step
