@@ -57,6 +57,7 @@ typedef struct {
   PetscReal  rel_t[2];  /* goes linearly from rel_f, the force at rel_t[0], to 0 at rel_t[1]      */
   PetscReal  rel_f[3];
   PetscBool  moving;    /* displacement-driven and moved by the step being solved (ContactSeed)  */
+  double     step_dx[3];/* that motion: its translation over the step (ContactSeed)              */
 } ToolContact;
 
 typedef struct {
@@ -976,9 +977,25 @@ static inline PetscBool PressedOn(const ContactState *cc, PetscInt tool) { retur
    Holding every frictional tool's nodes failed the NUMISHEET'93 mild-steel cup at the start of
    the draw (its force-driven holder), holding all but the force-driven ones the aluminium cup
    (doc/contact.md, Augmented Lagrangian) */
+static void CommittedNormal(const ContactState *, double[3]);
 static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, PetscInt tool, double mu)
 {
-  return (contact->keep && ((contact->keep > 1 && contact->tc[tool].moving) || !(mu > 0)) && PressedOn(&contact->cst_c[i], tool)) ? PETSC_TRUE : PETSC_FALSE;
+  const ContactState *cc = &contact->cst_c[i];
+  if (!contact->keep || !PressedOn(cc, tool)) return PETSC_FALSE;
+  if (!(mu > 0)) return PETSC_TRUE;
+  if (contact->keep < 2 || !contact->tc[tool].moving) return PETSC_FALSE;
+  {
+    /* keep all: not a node its tool moves away from (the step's translation against the
+       committed normal, which points from the tool into the body, below -1/2 of its length; a
+       tool sliding past the node, at right angles to the normal, is still held): a retracting
+       tool lets its nodes go, and the keep's pull would drag the body along with it
+       (kink_retract's lift-off) */
+    double n[3];
+    const double *dx = contact->tc[tool].step_dx;
+    CommittedNormal(cc, n);
+    const double  dn = dx[0] * n[0] + dx[1] * n[1] + dx[2] * n[2], d = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+    return (dn < -0.5 * d) ? PETSC_FALSE : PETSC_TRUE;
+  }
 }
 
 /* the committed normal of node i (0 when it carries no normal force): f - f_T = t_N n */
@@ -1011,6 +1028,7 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
       CommittedShift(contact, t, sc);
       CurShift(contact, t, lambda, sn);
       tc->moving = (sn[0] != sc[0] || sn[1] != sc[1] || sn[2] != sc[2]) ? PETSC_TRUE : PETSC_FALSE;
+      for (int k = 0; k < 3; k++) tc->step_dx[k] = sn[k] - sc[k];
     }
   }
   if (!contact->ns) PetscFunctionReturn(0);
