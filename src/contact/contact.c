@@ -970,7 +970,8 @@ static inline PetscBool PressedOn(const ContactState *cc, PetscInt tool) { retur
 
 /* node i, paired with tool now (its law: mu), is held closed (ContactKeepCommitted): it was
    pressed on that tool in the committed state, and the tool is frictionless or (keep all) moves
-   by a prescribed displacement in the step being solved (ToolContact.moving). The keep is for the
+   by a prescribed displacement in the step being solved (ToolContact.moving), not away from the
+   node (below). The keep is for the
    nodes that the predictor's motion of their tool would open or push in: a tool at rest is not
    moved by the predictor, and a force-driven tool's position is an unknown of the solve, set by
    the nodes' forces on it, which a tangential spring anchored at the predictor would fight.
