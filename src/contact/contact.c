@@ -968,6 +968,18 @@ PetscErrorCode ContactDestroy(Contact *c)
 /* the committed state cc was pressed on the tool */
 static inline PetscBool PressedOn(const ContactState *cc, PetscInt tool) { return (cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool == tool) ? PETSC_TRUE : PETSC_FALSE; }
 
+/* the committed normal of node i (0 when it carries no normal force): f - f_T = t_N n */
+static void CommittedNormal(const ContactState *cc, double n[3])
+{
+  double a[3], na;
+  n[0] = n[1] = n[2] = 0;
+  if (!(cc->status != CONTACT_OPEN && cc->has_frame && cc->tN > 0)) return;
+  for (int k = 0; k < 3; k++) a[k] = cc->f[k] - cc->fT[k];
+  na = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  if (!(na > 0)) return;
+  for (int k = 0; k < 3; k++) n[k] = a[k] / na;
+}
+
 /* node i, paired with tool now (its law: mu), is held closed (ContactKeepCommitted): it was
    pressed on that tool in the committed state, and the tool is frictionless or (keep all) moves
    by a prescribed displacement in the step being solved (ToolContact.moving), not away from the
@@ -978,7 +990,6 @@ static inline PetscBool PressedOn(const ContactState *cc, PetscInt tool) { retur
    Holding every frictional tool's nodes failed the NUMISHEET'93 mild-steel cup at the start of
    the draw (its force-driven holder), holding all but the force-driven ones the aluminium cup
    (doc/contact.md, Augmented Lagrangian) */
-static void CommittedNormal(const ContactState *, double[3]);
 static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, PetscInt tool, double mu)
 {
   const ContactState *cc = &contact->cst_c[i];
@@ -997,18 +1008,6 @@ static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, Petsc
     const double  dn = dx[0] * n[0] + dx[1] * n[1] + dx[2] * n[2], d = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
     return (dn < -0.5 * d) ? PETSC_FALSE : PETSC_TRUE;
   }
-}
-
-/* the committed normal of node i (0 when it carries no normal force): f - f_T = t_N n */
-static void CommittedNormal(const ContactState *cc, double n[3])
-{
-  double a[3], na;
-  n[0] = n[1] = n[2] = 0;
-  if (!(cc->status != CONTACT_OPEN && cc->has_frame && cc->tN > 0)) return;
-  for (int k = 0; k < 3; k++) a[k] = cc->f[k] - cc->fT[k];
-  na = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  if (!(na > 0)) return;
-  for (int k = 0; k < 3; k++) n[k] = a[k] / na;
 }
 
 PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lambda, PetscBool from_committed)
