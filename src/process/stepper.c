@@ -652,10 +652,10 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
              at every length down to 1e-13 of itself). The direction is the line search's Y, left
              unscaled by the failed search. */
           SNESLineSearch ls;
-          Vec            X, F, Y, Wl, G;
+          Vec            Y;
           PetscReal      ymax;
           PetscCall(SNESGetLineSearch(snes, &ls));
-          PetscCall(SNESLineSearchGetVecs(ls, &X, &F, &Y, &Wl, &G));
+          PetscCall(SNESLineSearchGetVecs(ls, NULL, NULL, &Y, NULL, NULL));
           PetscCall(VecNorm(Y, NORM_INFINITY, &ymax));
           if (ymax <= st->floor_tol * st->model_size) {
             reason = SNES_CONVERGED_SNORM_RELATIVE;
