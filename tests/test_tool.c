@@ -123,6 +123,25 @@ static Patch make_cylinder(int sense)
   return p;
 }
 
+/* a spindle torus (r > R) on a tube angle range that keeps R + r cos ps >= R + r cos(80 deg) > 0:
+   the shape of a punch's corner blend whose plan corner radius is below its profile radius */
+static Patch make_spindle_torus(int sense)
+{
+  Patch p;
+  memset(&p, 0, sizeof(p));
+  settype(&p, "torus");
+  p.sense = sense;
+  set3(p.rev.c, 0.1, 0.2, -0.1);
+  p.rev.R = 0.4;
+  p.rev.r = 1.1;
+  frame(&p, 0.1, -0.1, 1, 1, 0.2, 0);
+  p.rev.t0 = deg(10);
+  p.rev.t1 = deg(100);
+  p.rev.s0 = deg(-80);
+  p.rev.s1 = deg(60);
+  return p;
+}
+
 static Patch make_torus(int sense)
 {
   Patch p;
@@ -1077,8 +1096,9 @@ static PetscErrorCode test_options(void)
     {"-tool_t_patch0_range 0,190,0,90", "polar angle beyond 180", "-tool_t_patch0_range|must lie in [0, 180]"},
     {"-tool_t_patch0_type cone", "unknown type", "-tool_t_patch0_type cone: unknown"},
     {"-tool_t_patch0_sense 2", "sense 2", "-tool_t_patch0_sense 2: must be 1 or -1"},
-    {"TOR-tool_t_patch0_minor 2", "minor = major", "-tool_t_patch0_minor 2|must be smaller than -tool_t_patch0_major"},
-    {"TOR-tool_t_patch0_minor 3", "minor > major", "-tool_t_patch0_minor 3|must be smaller than"},
+    {"TOR-tool_t_patch0_minor 2 -tool_t_patch0_range 0,90,0,180", "minor = major, the tube angle reaching the axis", "-tool_t_patch0_minor 2|>= -tool_t_patch0_major 2|must keep R + r cos(ps) > 0"},
+    {"TOR-tool_t_patch0_minor 3 -tool_t_patch0_range 0,90,-30,140", "minor > major, the tube angle past the axis", "-tool_t_patch0_minor 3|range -30|140|must keep"},
+    {"TOR-tool_t_patch0_minor 3 -tool_t_patch0_range 0,90,170,200", "minor > major, the tube angle about pi", "-tool_t_patch0_minor 3|must keep R + r cos(ps) > 0"},
     {"PLA-tool_t_patch0_e2 2,0,0", "plane e2 parallel to e1", "-tool_t_patch0_e2 2|zero or parallel to -tool_t_patch0_e1"},
     {"COO-tool_t_patch0_right_points 1.3,0,0,1.3,1,0", "coons corners not meeting", "-tool_t_patch0: the boundary curves do not meet at corner (xi,eta)=(1,0): distance 0.3"},
     {"COO-tool_t_patch0_bottom_type arc -tool_t_patch0_bottom_points 0,0,0,1,0,0,0.4,-1,0", "arc not equidistant", "-tool_t_patch0_bottom_points: arc end points not equidistant"},
@@ -1886,7 +1906,7 @@ int main(int argc, char **argv)
   const double c0[3] = {0, 0, 0};
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   octant_coons(c0, 1.0, oct);
-  const Patch pl = make_plane(), sp = make_sphere(1), spm = make_sphere(-1), cy = make_cylinder(1), cym = make_cylinder(-1), to = make_torus(1), tom = make_torus(-1), cc = make_coons_cone(), cz = make_coons_collapsed();
+  const Patch pl = make_plane(), sp = make_sphere(1), spm = make_sphere(-1), cy = make_cylinder(1), cym = make_cylinder(-1), to = make_torus(1), tom = make_torus(-1), ts = make_spindle_torus(1), tsm = make_spindle_torus(-1), cc = make_coons_cone(), cz = make_coons_collapsed();
 
   /* 1. derivatives */
   test_derivatives("plane", &pl);
@@ -1979,6 +1999,15 @@ int main(int argc, char **argv)
   test_facets_sphere();
   test_facets_hint_large();
   PetscCall(PetscOptionsClear(NULL));
+
+  /* 8. a spindle torus (r > R) on a range outside its self-intersection (last: the random points of
+     the tests above stay as they were) */
+  test_derivatives("spindle torus (r > R)", &ts);
+  test_normals("spindle torus (r > R)", &ts);
+  test_normals("spindle torus (r > R) sense -1", &tsm);
+  test_projection("project spindle torus (r > R)", &ts, 0.2, 1.6);
+  test_normal_derivative("dn/dy spindle torus (r > R)", &ts, 0.2, 1);
+  test_normal_derivative("dn/dy spindle torus (r > R) sense -1", &tsm, 0.2, 1);
 
   /* timing */
   {

@@ -1,6 +1,6 @@
 # NUMISHEET'93 square cup: punch (quarter, x, y >= 0), 70 x 70, plan corner radius 10,
 # profile radius 8, head on the sheet's top face z = t at load 0 (one square plane); the corner
-# blend (a torus of major radius 2 < minor 8) is a Coons patch of its four boundary arcs;
+# blend is a spindle torus (major radius 2 < minor 8) on its outer part;
 # written by scripts/make_numisheet93_cases.py
 patches 7
 patch0_type plane
@@ -20,15 +20,13 @@ patch2_axis 1,0,0
 patch2_ref 0,0,-1
 patch2_radius 8
 patch2_range 0,90,-5,25
-patch3_type coons
-patch3_bottom_type arc
-patch3_bottom_points 27,25,0.78,25,27,0.78,25,25,0.78
-patch3_top_type arc
-patch3_top_points 35,25,8.78,25,35,8.78,25,25,8.78
-patch3_left_type arc
-patch3_left_points 27,25,0.78,35,25,8.78,27,25,8.78
-patch3_right_type arc
-patch3_right_points 25,27,0.78,25,35,8.78,25,27,8.78
+patch3_type torus
+patch3_center 25,25,8.78
+patch3_axis 0,0,1
+patch3_ref 1,0,0
+patch3_major 2
+patch3_minor 8
+patch3_range 0,90,-90,0
 patch4_type plane
 patch4_origin 35,-5,8.78
 patch4_e1 0,1,0

@@ -1,6 +1,11 @@
 /* Patch type "torus": x = c + (R + r cos ps) w(ph) + r sin ps a, azimuth ph = t0 + xi (t1 - t0)
    about the axis a, tube angle ps = s0 + eta (s1 - s0) (0 on the outer equator, +pi/2 towards +a);
-   R from the centre to the tube's core circle, r the tube radius (frames: revolution.c) */
+   R from the centre to the tube's core circle, r the tube radius (frames: revolution.c).
+   r >= R (a spindle torus: the tube crosses the axis) is accepted where the tube angle range keeps
+   the distance from the axis R + r cos ps positive, the part outside the self-intersection (the
+   corner blend of a punch whose plan corner radius is smaller than its profile radius): there the
+   patch is a regular surface, and the radial projection about the core circle in the point's own
+   meridian half-plane is its nearest point as for r < R. */
 #include "toolimpl.h"
 
 #include "options.h"
@@ -135,17 +140,23 @@ static PetscErrorCode TorusSetFromOptions(PetscOptionItems *PetscOptionsObject, 
   PetscCall(ToolOptionVec(PetscOptionsObject, stem, "center", "Torus centre", g->c));
   PetscCall(RevolutionFrameFromOptions(PetscOptionsObject, stem, g->a, g->e));
   PetscCall(ToolOptionPositive(PetscOptionsObject, stem, "major", "Major radius R (centre to the tube's core circle)", &g->R));
-  PetscCall(ToolOptionPositive(PetscOptionsObject, stem, "minor", "Minor radius r (tube), r < R", &g->r));
+  PetscCall(ToolOptionPositive(PetscOptionsObject, stem, "minor", "Minor radius r (tube); r >= R only where the tube angle range keeps R + r cos(ps) > 0", &g->r));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_minor", stem));
   PetscCall(ToolOptionFullName(PetscOptionsObject, opt, fmin_, sizeof(fmin_)));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_major", stem));
   PetscCall(ToolOptionFullName(PetscOptionsObject, opt, fmaj, sizeof(fmaj)));
-  PetscCheck(g->r < g->R, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s %g: must be smaller than %s %g", fmin_, g->r, fmaj, g->R);
   PetscCall(ToolOptionRange(PetscOptionsObject, stem, "Azimuth about the axis ph0,ph1 and tube angle ps0,ps1 (degrees)", deg, r));
   g->t0 = r[0];
   g->t1 = r[1];
   g->s0 = r[2];
   g->s1 = r[3];
+  if (g->r >= g->R) {
+    /* the smallest distance from the axis over the tube angle range: at pi (mod 2 pi) if the range
+       holds it, else at an end */
+    const double lo = fmin(g->s0, g->s1), hi = fmax(g->s0, g->s1), k = ceil((lo - TOOL_PI) / (2 * TOOL_PI));
+    const double cmin = (TOOL_PI + 2 * TOOL_PI * k <= hi) ? -1.0 : fmin(cos(lo), cos(hi));
+    PetscCheck(g->R + g->r * cmin > 1e-9 * (g->R + g->r), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s %g >= %s %g: the tube angle range %g,%g must keep R + r cos(ps) > 0 (the part of the spindle torus outside its self-intersection)", fmin_, g->r, fmaj, g->R, r[2] * 180.0 / TOOL_PI, r[3] * 180.0 / TOOL_PI);
+  }
   PetscFunctionReturn(0);
 }
 
