@@ -202,7 +202,7 @@ def cup_tools(tag="cup"):
     # the corner blend: the profile arc swept about the corner's axis, a torus of major radius rf <
     # minor rp (a spindle torus) on the tube angles -90..0, where the distance from the axis
     # rf + rp cos(ps) stays >= rf. (Until 2026-11-25 a Coons patch of its four boundary arcs, whose
-    # interior lies up to 0.35 mm inside the torus on the diagonal: doc/forming.md, Status.)
+    # interior lies up to 0.40 mm inside the torus near the diagonal: doc/forming.md, Status.)
     p.torus([c, c, t + rp], [0, 0, 1], [1, 0, 0], rf, rp, [0, 90, -90, 0])
     p.plane([a, S, t + rp], [0, 1, 0], [0, 0, 1], [0, c - S, 0, H])                      # +x
     p.plane([S, a, t + rp], [0, 0, 1], [1, 0, 0], [0, H, 0, c - S])                      # +y
