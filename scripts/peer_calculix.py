@@ -56,6 +56,14 @@ def rigid_shell(points_fn, nu, nv, thick, inward):
     surface as face S2: nodes 5-8)"""
     P = np.array([[points_fn(i / nu, j / nv) for j in range(nv + 1)] for i in range(nu + 1)])
     N = np.array([[inward(P[i, j]) for j in range(nv + 1)] for i in range(nu + 1)])
+    return shell_from_grid(P, N, thick)
+
+
+def shell_from_grid(P, N, thick):
+    """C3D8 shell of one layer from a grid of outer surface points P ((nu+1) x (nv+1) x 3) and unit
+    vectors N into the tool: the inner nodes `thick` along N; nodes (inner, then outer) and hexahedra
+    (0-based, outer face S2: nodes 5-8; orient() makes their volumes positive)"""
+    nu, nv = P.shape[0] - 1, P.shape[1] - 1
     outer = P.reshape(-1, 3)
     inner = (P + thick * N).reshape(-1, 3)
     nodes = np.vstack([inner, outer])
@@ -67,6 +75,12 @@ def rigid_shell(points_fn, nu, nv, thick, inward):
             q = [idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)]
             hexa.append(q + [k + off for k in q])
     return nodes, np.array(hexa)
+
+
+def swift_rows(K, e0, n):
+    """*PLASTIC rows of the Swift curve K (e0 + ep)^n, tabulated (stress, plastic strain)"""
+    return [f"{K * (e0 + ep) ** n:.8g}, {ep}" for ep in
+            [0, 0.0005, 0.001, 0.002, 0.004, 0.007, 0.01, 0.015, 0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8, 1.0, 2.0]]
 
 
 def orient(nodes, hexa, outward_point):
@@ -149,8 +163,7 @@ def write_deck(path, X, H):
         w("*SURFACE, NAME=SBOTTOM, TYPE=ELEMENT\nBLANK, S1\n*SURFACE, NAME=STOP, TYPE=ELEMENT\nBLANK, S2\n")
         w("*SURFACE, NAME=MPUNCH, TYPE=ELEMENT\nPUNCH, S2\n*SURFACE, NAME=MDIE, TYPE=ELEMENT\nDIE, S2\n")
         w("*MATERIAL, NAME=AL\n*ELASTIC\n" f"{E:.12g}, {NU}\n*PLASTIC\n")
-        for ep in [0, 0.0005, 0.001, 0.002, 0.004, 0.007, 0.01, 0.015, 0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8, 1.0, 2.0]:
-            w(f"{SWK * (SWE0 + ep) ** SWN:.8g}, {ep}\n")
+        w("".join(r + "\n" for r in swift_rows(SWK, SWE0, SWN)))
         w("*MATERIAL, NAME=RIGID\n*ELASTIC\n2e5, 0.3\n")
         w("*SOLID SECTION, ELSET=BLANK, MATERIAL=AL\n*SOLID SECTION, ELSET=PUNCH, MATERIAL=RIGID\n*SOLID SECTION, ELSET=DIE, MATERIAL=RIGID\n")
         w(f"*RIGID BODY, ELSET=PUNCH, REF NODE={ref_p}, ROT NODE={rot_p}\n*RIGID BODY, ELSET=DIE, REF NODE={ref_d}, ROT NODE={rot_d}\n")
@@ -174,10 +187,11 @@ def ccx_force(dat):
     return u[:n], 4 * f[:n]
 
 
-def run_ccx(deck_dir):
+def run_ccx(deck_dir, name="hemisphere_friction"):
+    """runs ccx on deck_dir/name.inp on one core; its output in deck_dir/ccx.log"""
     env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1", CCX_NPROC_RESULTS="1", CCX_NPROC_STIFFNESS="1")
     t0 = time.time()
-    p = subprocess.run(["ccx", "-i", "hemisphere_friction"], cwd=deck_dir, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    p = subprocess.run(["ccx", "-i", name], cwd=deck_dir, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     dt = time.time() - t0
     open(os.path.join(deck_dir, "ccx.log"), "w").write(p.stdout)
     return dt, p.returncode, p.stdout

@@ -32,6 +32,8 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+from peer_calculix import orient, run_ccx, shell_from_grid, swift_rows  # noqa: E402
 
 SHEET = "cases/sheets/numisheet93_cup_al_coarse.inp"
 CASE = "cases/numisheet93_cup_al_coarse.opts"
@@ -82,41 +84,28 @@ def skeleton(nside, ncorner):
 
 
 def sweep_shell(profile, nside, ncorner, thick):
-    """C3D8 shell (one layer) of the surface swept by profile = [(rho, z, n_rho, n_z)] along the
-    skeleton: nodes 5-8 of each hexahedron on the contact surface (S2), nodes 1-4 thick behind it"""
+    """C3D8 shell (one layer) of the surface swept by profile = [(rho, z, n_rho, n_z)] (n the contact
+    normal, out of the tool) along the skeleton: nodes 5-8 of each hexahedron on the contact surface
+    (S2), nodes 1-4 thick behind it"""
     c, n = skeleton(nside, ncorner)
     P, N = [], []
     for (cx, cy), (nx, ny) in zip(c, n):
         P.append([(cx + r * nx, cy + r * ny, z) for r, z, _, _ in profile])
-        N.append([(a * nx, a * ny, b) for _, _, a, b in profile])
-    return shell_from_grid(np.array(P), np.array(N), thick)
+        N.append([(-a * nx, -a * ny, -b) for _, _, a, b in profile])
+    return oriented_shell(np.array(P), np.array(N), thick)
 
 
-def shell_from_grid(P, N, thick):
-    nu, nv = P.shape[0] - 1, P.shape[1] - 1
-    outer = P.reshape(-1, 3)
-    inner = (P - thick * N).reshape(-1, 3)
-    nodes = np.vstack([inner, outer])
-    off = outer.shape[0]
-    idx = lambda i, j: i * (nv + 1) + j
-    hexa = []
-    for i in range(nu):
-        for j in range(nv):
-            q = [idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)]
-            x = nodes[q + [k + off for k in q]]
-            v = np.dot(np.cross(x[1] - x[0], x[3] - x[0]), x[4] - x[0])
-            if v < 0:
-                q = [q[0], q[3], q[2], q[1]]
-            hexa.append(q + [k + off for k in q])
-    return nodes, np.array(hexa)
+def oriented_shell(P, N, thick):
+    nodes, hexa = shell_from_grid(P, N, thick)
+    return nodes, orient(nodes, hexa, None)
 
 
 def plane_shell(x0, x1, y0, y1, z, nz, n, thick):
     xs, ys = np.linspace(x0, x1, n + 1), np.linspace(y0, y1, n + 1)
     P = np.array([[(x, y, z) for y in ys] for x in xs])
     N = np.zeros_like(P)
-    N[:, :, 2] = nz
-    return shell_from_grid(P, N, thick)
+    N[:, :, 2] = -nz
+    return oriented_shell(P, N, thick)
 
 
 def arc(rc, zc, r, a0, a1, k, sign):
@@ -158,13 +147,6 @@ def tools(stroke):
     return [("PUNCH", [head, side]), ("DIE", [die]), ("HOLDER", [holder])]
 
 
-def swift_table():
-    rows = []
-    for ep in [0, 0.0005, 0.001, 0.002, 0.004, 0.007, 0.01, 0.015, 0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8, 1.0, 2.0]:
-        rows.append(f"{SWK * (SWE0 + ep) ** SWN:.8g}, {ep}")
-    return rows
-
-
 def write_deck(path, X, H, stroke, kn):
     nb = X.shape[0]
     lines = ["** NUMISHEET'93 square cup, aluminium, von Mises, quarter model: written by scripts/peer_calculix_cup.py",
@@ -201,7 +183,7 @@ def write_deck(path, X, H, stroke, kn):
     lines += ["*SURFACE, NAME=SBOTTOM, TYPE=ELEMENT", "BLANK, S1", "*SURFACE, NAME=STOP, TYPE=ELEMENT", "BLANK, S2"]
     for name, _, _ in elems:
         lines += [f"*SURFACE, NAME=M{name}, TYPE=ELEMENT", f"{name}, S2"]
-    lines += ["*MATERIAL, NAME=AL", "*ELASTIC", f"{E:.12g}, {NU}", "*PLASTIC"] + swift_table()
+    lines += ["*MATERIAL, NAME=AL", "*ELASTIC", f"{E:.12g}, {NU}", "*PLASTIC"] + swift_rows(SWK, SWE0, SWN)
     lines += ["*MATERIAL, NAME=RIGID", "*ELASTIC", "2e5, 0.3", "*SOLID SECTION, ELSET=BLANK, MATERIAL=AL"]
     for name, _, _ in elems:
         lines.append(f"*SOLID SECTION, ELSET={name}, MATERIAL=RIGID")
@@ -235,7 +217,7 @@ def dat_blocks(dat, kind, setname):
     return out
 
 
-def ccx_drawin(dat, X):
+def ccx_drawin(dat):
     pu = dat_blocks(dat, "displacements", "PREF")
     hr = dat_blocks(dat, "forces", "HREF")
     ex, ey, ed = (dat_blocks(dat, "displacements", s) for s in ("EDGEX", "EDGEY", "EDGED"))
@@ -247,15 +229,6 @@ def ccx_drawin(dat, X):
     dd = np.array([-(ed[k][1][:, 0] + ed[k][1][:, 1]).mean() / math.sqrt(2) for k in range(n)])
     fh = np.array([b[1][0, 2] for b in hr])
     return tr, dx, dy, dd, fh
-
-
-def run_ccx(deck_dir, name):
-    env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1", CCX_NPROC_RESULTS="1", CCX_NPROC_STIFFNESS="1")
-    t0 = time.time()
-    p = subprocess.run(["ccx", "-i", name], cwd=deck_dir, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    dt = time.time() - t0
-    open(os.path.join(deck_dir, "ccx.log"), "w").write(p.stdout)
-    return dt, p.returncode, p.stdout
 
 
 def run_atrito(out, stroke, extra):
@@ -274,7 +247,6 @@ def atrito_drawin(out, strokes=(5.0, 10.0, 15.0)):
     and the holder's force over the draw (kN, full blank)"""
     import csv
     import h5py
-    sys.path.insert(0, HERE)
     import numisheet93  # noqa: E402
     rows = list(csv.DictReader(open(os.path.join(out, "contact.csv"))))
     stroke = {int(r["step"]): abs(float(r["travel"])) for r in rows if r["tool"] == "punch"}
@@ -317,7 +289,7 @@ def main():
         if rc != 0 or "Job finished" not in log:
             print(log[-3000:])
             sys.exit(f"peer_calculix_cup: ccx failed (exit {rc}); deck and log in {rundir}")
-        tr, dx, dy, dd, fh = ccx_drawin(os.path.join(rundir, "numisheet93_cup_al.dat"), X)
+        tr, dx, dy, dd, fh = ccx_drawin(os.path.join(rundir, "numisheet93_cup_al.dat"))
         print(f"CalculiX: {dt:.1f} s, {len(tr)} increments to {tr[-1]:.2f} mm; holder force at the end {-4 * fh[-1]:.0f} N (full)")
         for s in (5, 10, 15, 40):
             if tr[-1] >= s - 1e-9:
