@@ -23,6 +23,13 @@ static double             urand(void) /* uniform in [0, 1) (64-bit LCG) */
   return (double)(seed >> 11) / 9007199254740992.0;
 }
 static double uni(double a, double b) { return a + (b - a) * urand(); }
+/* every test that draws random points starts its own sequence from its name, so that a test's
+   points do not depend on which tests ran before it (FNV-1a hash) */
+static void reseed(const char *name)
+{
+  seed = 14695981039346656037ULL;
+  for (const char *c = name; *c; c++) seed = (seed ^ (unsigned char)*c) * 1099511628211ULL;
+}
 
 static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static double nrm(const double a[3]) { return sqrt(dot(a, a)); }
@@ -373,6 +380,7 @@ static double brute_tool(const Tool *t, const double y[3], int *kb)
 
 static void test_derivatives(const char *name, const Patch *p)
 {
+  reseed(name);
   const double h = 1e-5;
   double       e1 = 0, e2 = 0;
   for (int k = 0; k < 20; k++) {
@@ -408,6 +416,7 @@ static void test_derivatives(const char *name, const Patch *p)
 
 static void test_normals(const char *name, const Patch *p)
 {
+  reseed(name);
   double eu = 0, ea = 0, ec = 0;
   for (int k = 0; k < 50; k++) {
     const double u = urand(), v = urand();
@@ -445,6 +454,7 @@ static void test_normals(const char *name, const Patch *p)
 
 static void test_coons_shapes(void)
 {
+  reseed("test_coons_shapes");
   /* planar convex quad with straight sides: the Coons patch is the bilinear patch */
   double o[3], e1[3], e2[3], P[4][3];
   set3(o, 0.2, -0.4, 1.0);
@@ -576,13 +586,17 @@ static void report(const char *name, const ProjStats *st, double L)
 {
   TU_CHECK(st->fails == 0 && st->maxexcess <= 1e-9 * fmax(1.0, L), "%s: %d points (%d interior): projected distance - brute force <= %.2e (brute force - projected <= %.2e)", name, st->n, st->interior, st->maxexcess, st->maxdeficit);
   TU_CHECK(st->maxorth <= 1e-10, "%s: interior projections orthogonal: max |(y - x).x_i|/|x_i| / L = %.2e", name, st->maxorth);
-  TU_CHECK(st->maxcons <= 1e-12, "%s: x = x(xi,eta) + shift, n = PatchNormal, gap = (y - x).n = +-|y - x|: max error %.2e", name, st->maxcons);
+  /* |gap| = |y - x| holds only to the projection's tolerance, like the orthogonality above: near a
+     Coons patch's collapsed side the error reached 1.8e-12 over 30 sets of random points (and the
+     orthogonality 7.9e-12), so the bound here is the orthogonality's */
+  TU_CHECK(st->maxcons <= 1e-10, "%s: x = x(xi,eta) + shift, n = PatchNormal, gap = (y - x).n = +-|y - x|: max error %.2e", name, st->maxcons);
 }
 
 /* points about one patch: near the surface on both sides (parameters beyond the range too), near
    edges and corners, on the surface, far away */
 static void test_projection(const char *name, const Patch *p, double thick, double L)
 {
+  reseed(name);
   Tool         t;
   Patch        q      = *p;
   const double sh[3]  = {0.3, -0.1, 0.2};
@@ -642,6 +656,7 @@ static void test_projection(const char *name, const Patch *p, double thick, doub
 
 static void test_pole(void)
 {
+  reseed("test_pole");
   Patch p;
   Tool  t;
   memset(&p, 0, sizeof(p));
@@ -714,6 +729,7 @@ static void test_pole(void)
    it lies inside; with edge_tol 0 the gap along the edge's normal, as before */
 static void test_open_edge(void)
 {
+  reseed("test_open_edge");
   Patch P[2];
   Tool  t;
   const double sh[3] = {0, 0, 0};
@@ -774,6 +790,7 @@ static void test_open_edge(void)
 
 static void test_multipatch(void)
 {
+  reseed("test_multipatch");
   const double c[3] = {0, 0, 0}, sh[3] = {0.0, 0.0, 0.7};
   Patch        P[4];
   Tool         t;
@@ -878,6 +895,7 @@ static void test_multipatch(void)
 
 static void test_normal_derivative(const char *name, const Patch *p, double thick, int edges)
 {
+  reseed(name);
   Tool         t;
   Patch        q     = *p;
   const double sh[3] = {-0.1, 0.25, 0.4}, h = 1e-6;
@@ -929,6 +947,7 @@ static void test_normal_derivative(const char *name, const Patch *p, double thic
 /* PatchPrepare: the prepared patch evaluates, and projects, exactly as the unprepared one */
 static void test_prepared(const Patch *a, const Patch *b, const Patch *c)
 {
+  reseed("test_prepared");
   const Patch *P[3] = {a, b, c};
   int          diff = 0, n = 0;
   for (int k = 0; k < 3; k++) {
@@ -1382,6 +1401,7 @@ static int facets_count(const Tool *t) { return t && t->npatch == 1 && istype(&t
 
 static void test_facets_readers(void)
 {
+  reseed("test_facets_readers");
   PetscInt       n;
   PetscErrorCode ierr;
   Tool          *T;
@@ -1503,6 +1523,7 @@ static void write_sphere_stl(const char *path, double R, int k)
    distance; raw: the facet is the brute-force closest one */
 static void test_facets_hint_large(void)
 {
+  reseed("test_facets_hint_large");
   PetscInt       n;
   PetscErrorCode ierr;
   const double   sh[3] = {0.1, -0.2, 0.3};
@@ -1592,6 +1613,7 @@ static double tritri_sampled(const double A[3][3], const double B[3][3], int n)
    every facet outside its star (brute force), not far below the sampled distance */
 static void test_facets_clearance(void)
 {
+  reseed("test_facets_clearance");
   double worst = 0, over = 0;
   int    ncross = 0, okcross = 1;
   for (int k = 0; k < 300; k++) {
@@ -1676,6 +1698,7 @@ static void test_facets_clearance(void)
    same facet, the smaller index, and the strict minimum would have given both */
 static void test_facets_ties(void)
 {
+  reseed("test_facets_ties");
   PetscInt       n;
   PetscErrorCode ierr;
   char           opts[512], path[256];
@@ -1758,6 +1781,7 @@ static void test_facets_ties(void)
 
 static void test_facets_sphere(void)
 {
+  reseed("test_facets_sphere");
   PetscInt       n;
   PetscErrorCode ierr;
   const double   sh[3] = {0.1, -0.2, 0.3};
@@ -1988,6 +2012,15 @@ int main(int argc, char **argv)
   PetscCall(test_registry());
   PetscCall(test_view());
 
+  /* 8b. the checks of 1, 2, 4 and 7 on a spindle torus (r > R), on a range outside its
+     self-intersection */
+  test_derivatives("spindle torus (r > R)", &ts);
+  test_normals("spindle torus (r > R)", &ts);
+  test_normals("spindle torus (r > R) sense -1", &tsm);
+  test_projection("project spindle torus (r > R)", &ts, 0.2, 1.6);
+  test_normal_derivative("dn/dy spindle torus (r > R)", &ts, 0.2, 1);
+  test_normal_derivative("dn/dy spindle torus (r > R) sense -1", &tsm, 0.2, 1);
+
   /* 9. the examples of doc/tools.md */
   PetscCall(test_doc_examples());
 
@@ -1999,15 +2032,6 @@ int main(int argc, char **argv)
   test_facets_sphere();
   test_facets_hint_large();
   PetscCall(PetscOptionsClear(NULL));
-
-  /* 8. a spindle torus (r > R) on a range outside its self-intersection (last: the random points of
-     the tests above stay as they were) */
-  test_derivatives("spindle torus (r > R)", &ts);
-  test_normals("spindle torus (r > R)", &ts);
-  test_normals("spindle torus (r > R) sense -1", &tsm);
-  test_projection("project spindle torus (r > R)", &ts, 0.2, 1.6);
-  test_normal_derivative("dn/dy spindle torus (r > R)", &ts, 0.2, 1);
-  test_normal_derivative("dn/dy spindle torus (r > R) sense -1", &tsm, 0.2, 1);
 
   /* timing */
   {
