@@ -98,72 +98,45 @@ static Patch make_plane(void)
   return p;
 }
 
-static Patch make_sphere(int sense)
+/* a patch of revolution (sphere, cylinder, torus): centre c, radii R (and r, the torus's tube),
+   axis a and reference direction e (frame()), ranges t0..t1 and s0..s1 in the type's units */
+static Patch make_revolution(const char *type, int sense, const double c[3], double R, double r, const double a[3], const double e[3], double t0, double t1, double s0, double s1)
 {
   Patch p;
   memset(&p, 0, sizeof(p));
-  settype(&p, "sphere");
+  settype(&p, type);
   p.sense = sense;
-  set3(p.rev.c, 0.1, 0.2, -0.3);
-  p.rev.R = 1.3;
-  frame(&p, 0.2, 0.3, 1, 1, 0, 0);
-  p.rev.t0 = deg(20);
-  p.rev.t1 = deg(110);
-  p.rev.s0 = deg(-30);
-  p.rev.s1 = deg(80);
+  set3(p.rev.c, c[0], c[1], c[2]);
+  p.rev.R = R;
+  p.rev.r = r;
+  frame(&p, a[0], a[1], a[2], e[0], e[1], e[2]);
+  p.rev.t0 = t0;
+  p.rev.t1 = t1;
+  p.rev.s0 = s0;
+  p.rev.s1 = s1;
   return p;
+}
+
+static Patch make_sphere(int sense)
+{
+  return make_revolution("sphere", sense, (const double[3]){0.1, 0.2, -0.3}, 1.3, 0, (const double[3]){0.2, 0.3, 1}, (const double[3]){1, 0, 0}, deg(20), deg(110), deg(-30), deg(80));
 }
 
 static Patch make_cylinder(int sense)
 {
-  Patch p;
-  memset(&p, 0, sizeof(p));
-  settype(&p, "cylinder");
-  p.sense = sense;
-  set3(p.rev.c, -0.2, 0.1, 0.3);
-  p.rev.R = 0.8;
-  frame(&p, 0.3, -0.2, 1, 0, 1, 0);
-  p.rev.t0 = deg(10);
-  p.rev.t1 = deg(200);
-  p.rev.s0 = -0.5;
-  p.rev.s1 = 0.9;
-  return p;
+  return make_revolution("cylinder", sense, (const double[3]){-0.2, 0.1, 0.3}, 0.8, 0, (const double[3]){0.3, -0.2, 1}, (const double[3]){0, 1, 0}, deg(10), deg(200), -0.5, 0.9);
 }
 
 /* a spindle torus (r > R) on a tube angle range that keeps R + r cos ps >= R + r cos(80 deg) > 0:
    the shape of a punch's corner blend whose plan corner radius is below its profile radius */
 static Patch make_spindle_torus(int sense)
 {
-  Patch p;
-  memset(&p, 0, sizeof(p));
-  settype(&p, "torus");
-  p.sense = sense;
-  set3(p.rev.c, 0.1, 0.2, -0.1);
-  p.rev.R = 0.4;
-  p.rev.r = 1.1;
-  frame(&p, 0.1, -0.1, 1, 1, 0.2, 0);
-  p.rev.t0 = deg(10);
-  p.rev.t1 = deg(100);
-  p.rev.s0 = deg(-80);
-  p.rev.s1 = deg(60);
-  return p;
+  return make_revolution("torus", sense, (const double[3]){0.1, 0.2, -0.1}, 0.4, 1.1, (const double[3]){0.1, -0.1, 1}, (const double[3]){1, 0.2, 0}, deg(10), deg(100), deg(-80), deg(60));
 }
 
 static Patch make_torus(int sense)
 {
-  Patch p;
-  memset(&p, 0, sizeof(p));
-  settype(&p, "torus");
-  p.sense = sense;
-  set3(p.rev.c, 0.2, -0.1, 0.05);
-  p.rev.R = 1.2;
-  p.rev.r = 0.35;
-  frame(&p, -0.1, 0.2, 1, 1, 0.3, 0);
-  p.rev.t0 = deg(0);
-  p.rev.t1 = deg(120);
-  p.rev.s0 = deg(-60);
-  p.rev.s1 = deg(150);
-  return p;
+  return make_revolution("torus", sense, (const double[3]){0.2, -0.1, 0.05}, 1.2, 0.35, (const double[3]){-0.1, 0.2, 1}, (const double[3]){1, 0.3, 0}, deg(0), deg(120), deg(-60), deg(150));
 }
 
 static void curve(Curve *c, CurveType t, const double a[3], const double b[3], const double cc[3])
