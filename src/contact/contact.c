@@ -1151,6 +1151,17 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
     bilateral = PETSC_TRUE;
   }
 
+  /* the frame's seed: the one the pairing set at the iteration's start (eqs 28-30); a node that
+     the pairing left unpaired there (beyond the search distance) and that an evaluation within
+     the iteration (a line-search trial) finds on a tool has none: the chord of eq 28 at its
+     projection, as the next iteration's pairing would give it (the seed array's entry is then
+     unset or another contact's) */
+  double        chord[3];
+  const double *seed = contact->seed + 3 * i;
+  if (!contact->has_seed[i]) {
+    Chord(contact, tool, &pr, chord);
+    seed = chord;
+  }
   const Tool *tl = &contact->tools[tool];
   CurShift(contact, tool, lambda, sh);
   CommittedShift(contact, tool, shc);
@@ -1188,7 +1199,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
        Jacobian stays the derivative of the residual (-snes_test_jacobian). */
     const double g0 = law.delta > 0 ? -law.delta : 0.0, tb = lN - law.KN * pr.gap;
     double       tN0;
-    st->status = ContactNodeEvalAug(&law, cc->tN, g0, pr.n, dnp, contact->seed + 3 * i, tTn, ds, R, contact->fd ? NULL : K, st->t1, &tN0, st->tT);
+    st->status = ContactNodeEvalAug(&law, cc->tN, g0, pr.n, dnp, seed, tTn, ds, R, contact->fd ? NULL : K, st->t1, &tN0, st->tT);
     for (int k = 0; k < 3; k++) R[k] -= (tb - tN0) * pr.n[k];
     if (K && dnp)
       for (int k = 0; k < 9; k++) K[k] -= (tb - tN0) * dnp[k];
@@ -1213,7 +1224,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
           for (int c = 0; c < 3; c++) K[3 * r + c] += law.KT * ((r == c) - pr.n[r] * pr.n[c]);
     }
     st->tN = tb;
-  } else st->status = ContactNodeEvalAug(&law, lN, pr.gap, pr.n, dnp, contact->seed + 3 * i, tTn, ds, R, contact->fd ? NULL : K, st->t1, &st->tN, st->tT);
+  } else st->status = ContactNodeEvalAug(&law, lN, pr.gap, pr.n, dnp, seed, tTn, ds, R, contact->fd ? NULL : K, st->t1, &st->tN, st->tT);
   st->has_frame = PETSC_TRUE;
   for (int k = 0; k < 3; k++) {
     st->f[k]  = -R[k];
