@@ -256,6 +256,40 @@ int main(int argc, char **argv)
     PetscCall(PetscFree2(u, f));
     PetscCall(TearDown(&s));
   }
+
+  /* A node that the pairing at an iteration's start leaves unpaired (beyond the search distance)
+     and that an evaluation within the iteration finds on the tool (a line-search trial) takes the
+     chord of eq 28 at its projection as its frame's seed, as the next pairing would (it once read
+     a seed never set). The plane's first parameter direction is y: the chord, and so t1, along y
+     (the fallback of a seed along the normal would give x). */
+  PetscCall(PetscOptionsInsertString(NULL, "-tool_plane_patch0_e1 0,1,0 -tool_plane_patch0_e2 -1,0,0 -tool_plane_patch0_range -2,3,-3,2 -contact_search_distance 0.05"));
+  PetscCall(SetUp(&s, 0.3));
+  nloc = 3 * s.m.nv;
+  PetscCall(PetscCalloc2(nloc, &u, nloc, &f));
+  {
+    const PetscInt w = ContactCheckpointWidth();
+    PetscReal     *rows;
+    double         err = 0, ferr = 0;
+    int            n = 0;
+    Displace(&s.m, u, 1.0, 1.0); /* the bottom 1 above the plane: no node paired */
+    PetscCall(ContactSeed(s.c, u, 0, PETSC_TRUE));
+    Displace(&s.m, u, -pen, -pen); /* the trial: every bottom node pressed by pen */
+    PetscCall(ContactAssemble(s.c, u, 0, f, NULL, NULL, &nfail));
+    PetscCall(ContactCommit(s.c, 0));
+    PetscCall(PetscMalloc1(w * s.m.nvo + 1, &rows));
+    PetscCall(ContactCheckpointPack(s.c, rows));
+    for (PetscInt v = 0; v < s.m.nv; v++)
+      if (s.m.X[3 * v + 2] == 0 && s.m.vowned[v]) {
+        const PetscReal *row = rows + w * s.m.vrow[v]; /* t1 at 8..10, has_frame at 11 (ContactCheckpointPack) */
+        err  = PetscMax(err, PetscMax(fabs(fabs(row[9]) - 1), PetscMax(fabs(row[8]), fabs(row[10]))) + (row[11] == 1 ? 0 : 1));
+        ferr = PetscMax(ferr, fabs(PetscRealPart(f[s.m.vloff[v] + 2]) + KN * pen) / (KN * pen));
+        n++;
+      }
+    CHECK_ALL(nfail == 0 && err < 1e-12 && ferr < 1e-12, "a node first paired within an iteration: the chord's frame, t1 along the patch's first direction y on all %d bottom nodes of rank %d (error %.1e), force -K_N g (relative error %.1e)", n, rank, err, ferr);
+    PetscCall(PetscFree(rows));
+  }
+  PetscCall(PetscFree2(u, f));
+  PetscCall(TearDown(&s));
   PetscCall(PetscFinalize());
   TU_RETURN();
 }
