@@ -257,10 +257,10 @@ int main(int argc, char **argv)
     PetscCall(TearDown(&s));
   }
 
-  /* A node that the pairing at an iteration's start leaves unpaired (beyond the search distance)
-     and that an evaluation within the iteration finds on the tool (a line-search trial) takes the
-     chord of eq 28 at its projection as its frame's seed, as the next pairing would (it once read
-     a seed never set). The plane's first parameter direction is y: the chord, and so t1, along y
+  /* A node that has never had a frame seed, left unpaired by the pairing at an iteration's start
+     (beyond the search distance) and found on the tool by an evaluation within the iteration (a
+     line-search trial), takes the chord of eq 28 at its projection as its seed (it once read a
+     seed never set). The plane's first parameter direction is y: the chord, and so t1, along y
      (the fallback of a seed along the normal would give x). */
   PetscCall(PetscOptionsInsertString(NULL, "-tool_plane_patch0_e1 0,1,0 -tool_plane_patch0_e2 -1,0,0 -tool_plane_patch0_range -2,3,-3,2 -contact_search_distance 0.05"));
   PetscCall(SetUp(&s, 0.3));

@@ -806,6 +806,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     if (mark[v] && m->vowned[v]) contact->ns++;
   PetscCall(PetscMalloc1(contact->ns * nt + 1, &contact->tmask));
   PetscCall(PetscMalloc4(contact->ns, &contact->slave, 3 * contact->ns, &contact->sgdof, 3 * contact->ns, &contact->seed, contact->ns, &contact->has_seed));
+  PetscCall(PetscArrayzero(contact->seed, 3 * contact->ns)); /* zero: no seed set yet (NodeEval) */
   PetscCall(PetscCalloc2(3 * contact->ns + 1, &contact->seedn, 3 * contact->ns + 1, &contact->yseed));
   PetscCall(PetscCalloc2(contact->ns, &contact->active_prev, contact->ns, &contact->tN_prev));
   PetscCall(PetscMalloc1(contact->ns, &contact->pmemo));
@@ -1151,14 +1152,15 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
     bilateral = PETSC_TRUE;
   }
 
-  /* the frame's seed: the one the pairing set at the iteration's start (eqs 28-30); a node that
+  /* the frame's seed: the one the pairing set at the iteration's start (eqs 28-30). A node that
      the pairing left unpaired there (beyond the search distance) and that an evaluation within
-     the iteration (a line-search trial) finds on a tool has none: the chord of eq 28 at its
-     projection, as the next iteration's pairing would give it (the seed array's entry is then
-     unset or another contact's) */
+     the iteration (a line-search trial) finds on a tool keeps the last seed it had, fixed within
+     the iteration as the Jacobian assumes; one that never had a seed (the array's zero) takes
+     the chord of eq 28 at its projection: it has no committed tangential multipliers there, so
+     its force does not depend on the frame */
   double        chord[3];
   const double *seed = contact->seed + 3 * i;
-  if (!contact->has_seed[i]) {
+  if (!contact->has_seed[i] && seed[0] == 0 && seed[1] == 0 && seed[2] == 0) {
     Chord(contact, tool, &pr, chord);
     seed = chord;
   }
