@@ -83,8 +83,9 @@ def swift_rows(K, e0, n):
             [0, 0.0005, 0.001, 0.002, 0.004, 0.007, 0.01, 0.015, 0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8, 1.0, 2.0]]
 
 
-def orient(nodes, hexa, outward_point):
-    """orders each hexahedron so that its volume is positive and face S2 (nodes 5-8) is the outer one"""
+def orient(nodes, hexa):
+    """a hexahedron of negative volume gets its nodes reversed within each layer (1-4 and 5-8), so
+    that every volume is positive and the outer layer stays nodes 5-8 (face S2)"""
     out = []
     for h in hexa:
         x = nodes[h]
@@ -125,8 +126,8 @@ def write_deck(path, X, H):
         return (c - p) / DIE_MINOR
 
     dn, dh = rigid_shell(die_pt, 30, 16, 1.0, die_in)
-    ph = orient(pn, ph, None)
-    dh = orient(dn, dh, None)
+    ph = orient(pn, ph)
+    dh = orient(dn, dh)
     # the outer face of each shell element is S2 in C3D8 numbering only if nodes 5-8 are outer:
     # after orient() a flipped element has its outer nodes still at 5-8 (we swapped within layers)
     op, od = nb, nb + pn.shape[0]

@@ -100,7 +100,7 @@ def sweep_shell(profile, nside, ncorner, thick):
 
 def oriented_shell(P, N, thick):
     nodes, hexa = shell_from_grid(P, N, thick)
-    return nodes, orient(nodes, hexa, None)
+    return nodes, orient(nodes, hexa)
 
 
 def plane_shell(x0, x1, y0, y1, z, nz, n, thick):
