@@ -3,6 +3,7 @@
 #   make run      install what is missing, build, run the main job
 #   make check    install what is missing, build, run the test suite
 #   make bench    assembly throughput benchmark (writes doc/performance.md)
+#   make memcheck the unit tests and short runs under valgrind (scripts/memcheck.sh; not in check)
 
 # Nothing here may ask an installed package at parse time: on a fresh machine the Makefile is read
 # before scripts/install-deps.sh (the order-only prerequisite $(DEPS_STAMP)) has installed
@@ -30,7 +31,7 @@ DEPS_STAMP := build/.deps-ok
 FC       := gfortran
 UMAT_SO  := $(patsubst tests/umat_%.f,bin/umat_%.so,$(wildcard tests/umat_*.f)) $(if $(wildcard tests/test_umat.c),bin/umat_ctest.so)
 
-.PHONY: all deps run check bench clean sanitize
+.PHONY: all deps run check bench clean sanitize memcheck
 all: bin/atrito $(TEST_BIN) $(UMAT_SO)
 
 $(DEPS_STAMP):
@@ -73,6 +74,23 @@ bin-san/test_%: tests/test_%.c $(wildcard tests/*.h) $(SAN_OBJ) | $(DEPS_STAMP)
 	$(CC) $(CPPFLAGS) $(SAN_FLAGS) $< $(SAN_OBJ) -o $@ $(LDLIBS)
 sanitize: $(TEST_BIN:bin/%=bin-san/%)
 
+# the programs for valgrind's memcheck (scripts/memcheck.sh): uninitialised reads, which the
+# sanitizers above do not see. Built without -march=native, whose AVX-512 instructions valgrind
+# cannot decode, and at -O1 so that its reports name the lines.
+VG_FLAGS := -O1 -g -std=c11 -fno-omit-frame-pointer
+VG_OBJ   := $(LIB_SRC:src/%.c=build-vg/%.o)
+build-vg/%.o: src/%.c $(wildcard include/*.h src/*/*.h) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(VG_FLAGS) -c $< -o $@
+bin-vg/atrito: build-vg/main.o $(VG_OBJ) | $(DEPS_STAMP)
+	@mkdir -p bin-vg
+	$(CC) $(VG_FLAGS) $^ -o $@ $(LDLIBS)
+bin-vg/test_%: tests/test_%.c $(wildcard tests/*.h) $(VG_OBJ) | $(DEPS_STAMP)
+	@mkdir -p bin-vg
+	$(CC) $(CPPFLAGS) $(VG_FLAGS) $< $(VG_OBJ) -o $@ $(LDLIBS)
+memcheck: deps bin-vg/atrito $(TEST_BIN:bin/%=bin-vg/%) $(UMAT_SO)
+	@bash scripts/memcheck.sh
+
 run: deps all
 	@bash scripts/run-main.sh
 
@@ -83,4 +101,4 @@ bench: deps all
 	@$(PYTHON) scripts/bench_assembly.py
 
 clean:
-	rm -rf build bin build-san bin-san
+	rm -rf build bin build-san bin-san build-vg bin-vg

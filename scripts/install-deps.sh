@@ -23,6 +23,8 @@ have mpiexec || need+=(openmpi-bin)
 have mpicc || need+=(libopenmpi-dev)
 # the Fortran user materials of the tests (tests/umat_*.f)
 have gfortran || need+=(gfortran)
+# valgrind's memcheck (tests/test_valgrind.sh, `make memcheck`)
+have valgrind || need+=(valgrind)
 # an optimised BLAS: MUMPS factorisations are about 10x faster than with the reference BLAS
 [ -e "$R/usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3" ] || need+=(libopenblas0-pthread)
 "$PY" -c "import numpy" >/dev/null 2>&1 || need+=(python3-numpy)

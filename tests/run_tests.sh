@@ -70,6 +70,7 @@ run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh
 run umat-runs       bash tests/test_umat.sh
 run memory          bash tests/test_memory.sh
+run valgrind        bash tests/test_valgrind.sh
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
