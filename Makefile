@@ -3,7 +3,7 @@
 #   make run      install what is missing, build, run the main job
 #   make check    install what is missing, build, run the test suite
 #   make bench    assembly throughput benchmark (writes doc/performance.md)
-#   make memcheck the unit tests and short runs under valgrind (scripts/memcheck.sh; not in check)
+#   make memcheck the unit tests and short runs under valgrind (scripts/memcheck.sh; make check runs its quick part)
 
 # Nothing here may ask an installed package at parse time: on a fresh machine the Makefile is read
 # before scripts/install-deps.sh (the order-only prerequisite $(DEPS_STAMP)) has installed
