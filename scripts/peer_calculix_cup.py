@@ -39,7 +39,6 @@ from peer_calculix import orient, run_ccx, shell_from_grid, swift_rows  # noqa: 
 # the blank and the case of each mesh, and the case's draw steps over its 40 mm
 MESHES = {"coarse": ("cases/sheets/numisheet93_cup_al_coarse.inp", "cases/numisheet93_cup_al_coarse.opts", 80),
           "fine": ("cases/sheets/numisheet93_cup_al_fine.inp", "cases/numisheet93_cup_al_fine.opts", 160)}
-SHEET, CASE, DRAW_STEPS = MESHES["coarse"]
 T = 0.81
 E, NU = 70000.0, 0.3
 SWK, SWE0, SWN = 576.79, 0.01658, 0.3593
@@ -150,10 +149,10 @@ def tools(stroke):
     return [("PUNCH", [head, side]), ("DIE", [die]), ("HOLDER", [holder])]
 
 
-def write_deck(path, X, H, stroke, kn):
+def write_deck(path, X, H, stroke, kn, sheet):
     nb = X.shape[0]
     lines = ["** NUMISHEET'93 square cup, aluminium, von Mises, quarter model: written by scripts/peer_calculix_cup.py",
-             f"** from {SHEET} and the geometry of cases/tools/numisheet93_cup_al_*.tool. Units: mm, N, MPa.",
+             f"** from {sheet} and the geometry of cases/tools/numisheet93_cup_al_*.tool. Units: mm, N, MPa.",
              "*NODE, NSET=NALL"]
     lines += [f"{i + 1}, {x[0]:.12g}, {x[1]:.12g}, {x[2]:.12g}" for i, x in enumerate(X)]
     next_node, next_elem = nb + 1, H.shape[0] + 1
@@ -234,11 +233,12 @@ def ccx_drawin(dat):
     return tr, dx, dy, dd, fh
 
 
-def run_atrito(out, stroke, extra):
+def run_atrito(out, stroke, extra, mesh):
+    case, draw_steps = MESHES[mesh][1:]
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
-    steps = max(4, int(round(DRAW_STEPS * stroke / 40.0)))
+    steps = max(4, int(round(draw_steps * stroke / 40.0)))
     t0 = time.time()
-    subprocess.run([os.environ.get("ATRITO", os.path.join(ROOT, "bin", "atrito")), "-options_file", os.path.join(ROOT, CASE),
+    subprocess.run([os.environ.get("ATRITO", os.path.join(ROOT, "bin", "atrito")), "-options_file", os.path.join(ROOT, case),
                     "-output_dir", out, "-material_type", "j2", "-tool_punch_motion", f"0,0,{-stroke:g}",
                     "-stage_draw_steps", str(steps), "-stage_draw_dt_max", f"{1.0 / steps:.6g}"] + extra,
                    check=True, env=env, stdout=subprocess.DEVNULL, cwd=ROOT)
@@ -276,15 +276,14 @@ def main():
     ap.add_argument("--skip-ccx", action="store_true")
     ap.add_argument("--skip-atrito", action="store_true")
     a = ap.parse_args()
-    global SHEET, CASE, DRAW_STEPS
-    SHEET, CASE, DRAW_STEPS = MESHES[a.mesh]
+    sheet = MESHES[a.mesh][0]
     work = a.keep or tempfile.mkdtemp(prefix="peer_cup_")
     os.makedirs(work, exist_ok=True)
-    X, H = read_sheet(os.path.join(ROOT, SHEET))
+    X, H = read_sheet(os.path.join(ROOT, sheet))
     # the deck kept in the repository is the default one (coarse, stroke 15 mm, 1000 N/mm^3); others go to the work folder
     default = a.stroke == 15.0 and a.penalty == 1000.0 and a.mesh == "coarse"
     deck = os.path.join(HERE if default else work, *(["calculix"] if default else []), "numisheet93_cup_al.inp")
-    write_deck(deck, X, H, a.stroke, a.penalty)
+    write_deck(deck, X, H, a.stroke, a.penalty, sheet)
     if not a.skip_ccx:
         if not shutil.which("ccx"):
             sys.exit("peer_calculix_cup: ccx not found (Debian package calculix-ccx)")
@@ -303,7 +302,7 @@ def main():
     if not a.skip_atrito:
         for label, extra in (("augmented Lagrangian (the case's)", []), ("plain penalty", ["-contact_augmented", "0"])):
             out = os.path.join(work, "atrito_" + ("auglag" if not extra else "penalty"))
-            dt = run_atrito(out, a.stroke, extra + ["-contact_penalty_normal", f"{a.penalty:g}", "-contact_penalty_tangential", f"{a.penalty / 10:g}"])
+            dt = run_atrito(out, a.stroke, extra + ["-contact_penalty_normal", f"{a.penalty:g}", "-contact_penalty_tangential", f"{a.penalty / 10:g}"], a.mesh)
             res, hold = atrito_drawin(out)
             print(f"this code, J2, {label}: {dt:.1f} s; holder force {hold.min():.2f}..{hold.max():.2f} kN (full)")
             for s, d in res.items():
