@@ -2,7 +2,7 @@
 # valgrind's memcheck over the unit-test programs and short runs of the solver paths (`make
 # memcheck`, which builds the programs of bin-vg/ first): reads of memory never written, invalid
 # accesses and bad frees. The sanitizers of tests/test_memory.sh find invalid accesses and leaks
-# but not uninitialised reads; this pass does, at some 30 to 50 times the run time: about 8
+# but not uninitialised reads; this pass does, at some 30 to 50 times the run time: about 9
 # minutes on 2 cores, so the whole pass is not part of the test suite. Leaks are left to
 # tests/test_memory.sh (PETSc's -malloc_dump): MPI's libraries keep memory until exit.
 #
@@ -52,9 +52,10 @@ check() {
   fi
 }
 
-# (not test_tool: its brute-force projections over meshed tools of up to a million facets take
-# over 10 minutes under valgrind; the runs below project on planes, spheres, cylinders, tori and
-# Coons patches)
+# (not test_tool: its brute-force reference projections, spread over the whole program, take
+# over 10 minutes under valgrind; tests/test_memory.sh runs it under the sanitizers. The runs below
+# project on planes, spheres, cylinders, tori, Coons patches and meshed tools read from STL, Gmsh
+# and Abaqus files)
 if [ $QUICK -eq 1 ]; then
   check test_contact_object-np2 2 bin-vg/test_contact_object
 else
@@ -88,6 +89,11 @@ run stages_release 1 -options_file cases/stages_release.opts
 # first 1.4 mm (the release and springback stages left out: their options are reported unused)
 run uchannel_start 1 -options_file cases/numisheet93_uchannel_coarse.opts -stage_names close,draw \
   -stage_draw_duration 0.02 -stage_draw_steps 2 -stage_draw_dt_max 0.01
+# meshed tools: an STL ball with friction (Nagata smoothing, the hinted projection), the seed
+# mesh's tools from a Gmsh file (2 ranks) and from an Abaqus deck's surface groups
+run block_sphere_stl 1 -options_file cases/block_sphere_stl.opts
+run seed_msh24 2 -options_file cases/hemisphere_frictionless_msh24.opts -tool_punch_motion 0,0,4 -load_steps 2
+run seed_inp24 1 -options_file cases/hemisphere_frictionless_inp24.opts -tool_punch_motion 0,0,4 -load_steps 2
 # the iterative solver (BoomerAMG through -pc_type amgsys) on a small whole blank
 run amgsys_disk 2 -options_file cases/hemisphere_friction_disk.opts -options_file cases/solver_amgsys.opts \
   -blank_core_cells 4 -blank_radial_cells 10 -blank_layers 2 -tool_punch_motion 0,0,1 -load_steps 1
