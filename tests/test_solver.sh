@@ -163,3 +163,16 @@ a=$(kry_of "$OUT/disk_sys_cf.log"); b=$(kry_of "$OUT/disk_hyp3.log"); c=$(kry_of
 [ -n "$a" ] && [ "$a" = "$b" ] && [ -n "$c" ] && [ "$c" = "$d" ] && [ "$a" != "$c" ] &&
   ok "whole blank: amgsys -pc_amgsys_relax_order CF = PCHYPRE ($a), natural = PCHYPRE -pc_hypre_boomeramg_no_CF ($c)" ||
   not_ok "whole blank: amgsys CF '$a' against PCHYPRE '$b'; natural '$c' against PCHYPRE no_CF '$d'"
+
+# 13. cases/solver_amgsys_fast.opts (hypre's relax type 3 and GMRES(100): tuned for the time per
+#     Newton iteration rather than the Krylov iterations, doc/performance.md): the quarter blank
+#     of section 10 at 1 and 2 ranks against LU; every option of the file read (no "never used"
+#     warning), and the Krylov counts not those of cases/solver_amgsys.opts
+for np in 1 2; do
+  atrito $np quarter_fast$np $QUARTER -options_file cases/solver_amgsys_fast.opts &&
+    compare "$OUT/quarter_lu/history.csv" "$OUT/quarter_fast$np/history.csv" 6 "quarter blank with friction: GMRES + amgsys, relax type 3 (np=$np) against LU"
+done
+f=$(kry_of "$OUT/quarter_fast1.log"); s=$(kry_of "$OUT/quarter_sys1.log")
+[ -n "$f" ] && [ "$f" != "$s" ] && ! grep -q "never used" "$OUT/quarter_fast1.log" "$OUT/quarter_fast2.log" &&
+  ok "quarter blank, cases/solver_amgsys_fast.opts: every option read, Krylov iterations $f (solver_amgsys.opts: $s)" ||
+  not_ok "cases/solver_amgsys_fast.opts: Krylov '$f' against solver_amgsys.opts '$s', or an option never used"
