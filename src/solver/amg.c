@@ -23,10 +23,11 @@
    defaults those of cases/solver_amg_sheet.opts (PCHYPRE there) but for the relaxation order,
    hypre's natural one here. cases/solver_amgsys_fast.opts takes relaxation type 3 (a forward
    pass going down, a backward one going up) for the symmetric hybrid Gauss-Seidel (6, a forward
-   and a backward pass in every sweep): more Krylov iterations, a third of the time per V-cycle. The Jacobian is used in hypre's format as it is
-   (-assembly_mat_type hypre), any other type is converted at each setup. One V-cycle per
-   application. hypre's nodal coarsening (SetNodal) is not offered: it needs every node to have all
-   three unknowns, which is what a constrained component breaks. */
+   and a backward pass in every sweep): more Krylov iterations, a third of the time per V-cycle.
+   The Jacobian is used in hypre's format as it is (-assembly_mat_type hypre), any other type is
+   converted at each setup. One V-cycle per application. hypre's nodal coarsening (SetNodal) is
+   not offered: it needs every node to have all three unknowns, which is what a constrained
+   component breaks. */
 #define _DEFAULT_SOURCE /* ffs() in hypre's utilities header */
 #include <strings.h>
 
