@@ -7,7 +7,8 @@
    A vertex is owned by the lowest-numbered part among the cells around it (the model's
    assumption; PETSc's distribution makes a similar choice).
 
-   usage: partition_stats CORE_CELLS RADIAL_CELLS LAYERS BALANCE P1 [P2 ...]   (BALANCE: cells or contact)
+   usage: partition_stats [-whole] CORE_CELLS RADIAL_CELLS LAYERS BALANCE P1 [P2 ...]   (BALANCE: cells or contact;
+          -whole: the whole disk, -blank_quarter false, instead of the quarter)
    output: one line "mesh cells N vertices N slaves N" and per P one line
      "parts P cut C cells_max M cells_mean M verts_owned_max .. ghosts_max .. ghosts_mean ..
       ghost_frac_max .. neighbours_max .. neighbours_mean .. slaves_max .. slaves_mean .. seconds S" */
@@ -29,15 +30,21 @@ static int cmpint(const void *a, const void *b) { return (*(const idx_t *)a > *(
 
 int main(int argc, char **argv)
 {
-  MeshData m;
+  MeshData  m;
+  PetscBool quarter = PETSC_TRUE;
 
+  if (argc > 1 && !strcmp(argv[1], "-whole")) {
+    quarter = PETSC_FALSE;
+    argv++;
+    argc--;
+  }
   if (argc < 6 || (strcmp(argv[4], "cells") && strcmp(argv[4], "contact"))) {
-    fprintf(stderr, "usage: partition_stats CORE_CELLS RADIAL_CELLS LAYERS cells|contact P1 [P2 ...]\n");
+    fprintf(stderr, "usage: partition_stats [-whole] CORE_CELLS RADIAL_CELLS LAYERS cells|contact P1 [P2 ...]\n");
     return 1;
   }
   if (PetscInitializeNoArguments()) return 1;
   memset(&m, 0, sizeof(m));
-  if (MeshDataCreateBlank(59.18, 1.0, 0.4, atoi(argv[1]), atoi(argv[2]), atoi(argv[3]), PETSC_TRUE, &m)) return 2;
+  if (MeshDataCreateBlank(59.18, 1.0, 0.4, atoi(argv[1]), atoi(argv[2]), atoi(argv[3]), quarter, &m)) return 2;
   const idx_t ne = (idx_t)m.ne, nn = (idx_t)m.nv;
   PetscBool  *slave = calloc((size_t)nn, sizeof(PetscBool));
   PetscInt   *ep    = malloc(sizeof(PetscInt) * (size_t)ne);

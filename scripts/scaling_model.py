@@ -4,6 +4,7 @@ hexahedra (the hemispherical punch blank, quarter, 4 layers, ~1.0e6 cells), from
 measured on this machine. Writes doc/scaling-model.md.
 
 usage: scripts/scaling_model.py [--core 210 --radial 490 --layers 4] [--no-measure]
+       scripts/scaling_model.py --measured DIR [DIR ...]   (or --measured with no DIR: from the stored runs)
 
 1. Partition statistics (scripts/partition_stats.c, built here against build/lib.a): the mesh
    partitioned by METIS as the code does into 16 ... 4096 parts; per part owned cells, owned and
@@ -21,8 +22,14 @@ usage: scripts/scaling_model.py [--core 210 --radial 490 --layers 4] [--no-measu
    neighbours (latency alpha, bandwidth beta, ghost values of 3 doubles per vertex): per BiCGStab
    iteration two operator applications and two V-cycles (per level and cycle 2 sweeps + 3
    exchanges), and log2(P) allreduces (4 per iteration) and per level.
+4. --measured: the strong-scaling runs of scripts/scaling.py on a machine with more cores (its
+   --out folders: records.json and the raw -log_view outputs) set beside the same model, with the
+   unit costs taken from that machine's own 1-rank run of the same case and the partition
+   statistics of that case's mesh; the runs are stored in doc/reference/scaling-measured.json
+   (--measured with no folder renders from there) and written to the section "Measured on more
+   cores, beside the model" of doc/scaling-model.md, every other section kept.
 """
-import argparse, math, os, re, subprocess, sys, tempfile
+import argparse, json, math, os, re, statistics, subprocess, sys, tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
@@ -41,6 +48,10 @@ MEASURED = [(250512, 942495, 2, 61.0, "5 Newton iterations of a 1 mm step, 304 s
             (1010224, 3794535, 2, 290.0, "9 Newton iterations and the predictor of a 1 mm step, 2 888 s")]
 
 
+MEASURED_JSON = os.path.join(ROOT, "doc", "reference", "scaling-measured.json")
+MEASURED_HEADING = "## Measured on more cores, beside the model"
+
+
 def build_stats(work):
     exe = os.path.join(work, "partition_stats")
     pc = subprocess.run(["pkg-config", "--cflags", "--libs", "PETSc"], capture_output=True, text=True).stdout.split()
@@ -50,8 +61,9 @@ def build_stats(work):
     return exe
 
 
-def partition(exe, core, radial, layers):
-    out = subprocess.run([exe, str(core), str(radial), str(layers), "cells"] + [str(p) for p in PARTS], capture_output=True, text=True, check=True).stdout
+def partition(exe, core, radial, layers, parts=PARTS, whole=False):
+    out = subprocess.run([exe] + (["-whole"] if whole else []) + [str(core), str(radial), str(layers), "cells"] + [str(p) for p in parts],
+                         capture_output=True, text=True, check=True).stdout
     mesh = dict(zip(*[iter(out.splitlines()[0].split()[1:])] * 2))
     rows = []
     for line in out.splitlines()[1:]:
@@ -121,13 +133,173 @@ def model(mesh, rows, c):
     return out
 
 
+def _opt(args, name, default=None):
+    return args[args.index(name) + 1] if name in args else default
+
+
+def extract_runs(dirs):
+    """one record per run of scripts/scaling.py (its records.json and raw logs): the case, the ranks,
+    the counts and the event times (maximum over the ranks) that the model is compared with"""
+    runs, machine, launcher = [], None, None
+    for d in dirs:
+        with open(os.path.join(d, "records.json")) as f:
+            R = json.load(f)
+        machine, launcher = R["machine"], R["args"]["launcher"]
+        for r in R["records"]:
+            if r["status"] != "ok" or r["kind"] != "strong":
+                continue
+            with open(os.path.join(d, f"strong_np{r['p']}_rep{r['rep']}.log")) as f:
+                log = f.read()
+            cmd = r["cmd"]
+            case = os.path.relpath(cmd[cmd.index("-options_file") + 1], ROOT) if "/cases/" not in cmd[cmd.index("-options_file") + 1] else \
+                "cases/" + cmd[cmd.index("-options_file") + 1].split("/cases/")[1]
+            with open(os.path.join(ROOT, case)) as f:
+                whole = re.search(r"^-blank_quarter\s+(false|0|no)", f.read(), re.M) is not None
+            m = re.search(r"mesh: (\d+) vertices, (\d+) hexahedra; .*cells per rank: ([\d ]+)", log)
+            ev = {}
+            for name in ("SNESSolve", "AtritoJacobian", "AtritoResidual", "AtritoContact", "KSPSolve", "PCSetUp"):
+                ev[name] = log_event(log, name)
+            its = [int(x) for x in re.findall(r"Linear solve converged due to \S+ iterations (\d+)", log)]
+            done = re.search(r"done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts", log)
+            runs.append(dict(case=case, core=int(_opt(cmd, "-blank_core_cells")), radial=int(_opt(cmd, "-blank_radial_cells")),
+                             layers=int(_opt(cmd, "-blank_layers", "4")), whole=whole, p=r["p"], rep=r["rep"], total=r["total"],
+                             vertices=int(m.group(1)), cells=int(m.group(2)), cells_per_rank=[int(x) for x in m.group(3).split()],
+                             slaves=int(re.search(r"contact: (\d+) slave nodes", log).group(1)), newton=int(done.group(2)),
+                             cuts=int(done.group(3)), krylov=its, events={k: list(v) for k, v in ev.items()},
+                             date=machine["date"], commit=machine["commit"]))
+    return dict(machine=machine, launcher=launcher, runs=runs)
+
+
+def measured_section(data, exe):
+    mi, L = data["machine"], []
+    L += [MEASURED_HEADING, "",
+          f"Measured with `scripts/scaling.py` on {mi['date']}: {mi['cpu']}, {mi['cores']} cores ({mi.get('virt', '')}), {mi['mem']}, "
+          f"one rank per core (`{data['launcher']}`); commit {mi['commit']}; rendered by `scripts/scaling_model.py --measured` from "
+          f"`{os.path.relpath(MEASURED_JSON, ROOT)}` (the runs' counts and event times). The machine had no other work "
+          "(scripts/scaling.py's load from /proc/stat: 0.01 cores).", "",
+          "The model of this document applied to each measured case with that machine's own unit costs, taken from its 1-rank run "
+          "of the same case (per Newton iteration: the assembly time, the contact time; per unknown: the Krylov iteration and "
+          "BoomerAMG's setup), the counts measured at each rank count (Krylov iterations and setups per Newton iteration: the "
+          "iteration counts change with the number of ranks, since the hybrid Gauss-Seidel smoother is Jacobi across a rank "
+          "boundary), the largest part of METIS's partition of the case's mesh (`scripts/partition_stats.c -whole`: the cells and "
+          "the owned vertices of the largest part, its ghosts and neighbours) and the model's network (2 µs, 10 GB/s). "
+          "Measured: the events of `-log_view` (maximum over the ranks) over the Newton iterations, medians over the runs; "
+          "assembly = AtritoJacobian + AtritoResidual (contact nested), Krylov = KSPSolve (BoomerAMG's setup nested; the "
+          "predictor's solve included). \"Per Krylov iteration\" is (KSPSolve − PCSetUp) over the Krylov iterations.", ""]
+    cases, summary = {}, {}
+    for r in data["runs"]:
+        cases.setdefault((r["case"], r["core"], r["radial"], r["layers"], r["whole"]), []).append(r)
+    for (case, core, radial, layers, whole), rs in sorted(cases.items(), key=lambda kv: kv[1][0]["cells"]):
+        ps = sorted({r["p"] for r in rs})
+        if 1 not in ps:
+            continue
+        mesh, rows = partition(exe, core, radial, layers, [p for p in ps if p > 1], whole)
+        part = {int(r["parts"]): r for r in rows}
+        ndof = 3 * mesh["vertices"]
+
+        def med(p, f):
+            return statistics.median(f(r) for r in rs if r["p"] == p)
+
+        def per_newton(r, name):
+            return r["events"][name][1] / r["newton"]
+
+        def kry_it(r):
+            return (r["events"]["KSPSolve"][1] - r["events"]["PCSetUp"][1]) / max(sum(r["krylov"]), 1)
+
+        asm1 = med(1, lambda r: (r["events"]["AtritoJacobian"][1] + r["events"]["AtritoResidual"][1]) / r["newton"])
+        con1 = med(1, lambda r: r["events"]["AtritoContact"][1] / r["newton"])
+        u_kry = med(1, kry_it) / ndof
+        u_set = med(1, lambda r: r["events"]["PCSetUp"][1] / max(r["events"]["PCSetUp"][0], 1)) / ndof
+        t1 = med(1, lambda r: r["total"])
+        k1 = med(1, kry_it)
+        L += [f"### {mesh['cells']} hexahedra, whole blank" if whole else f"### {mesh['cells']} hexahedra", "",
+              f"`{case} -options_file cases/solver_amgsys.opts -blank_core_cells {core} -blank_radial_cells {radial}` "
+              f"(`-blank_layers {layers}`), one load step of 1 mm: {mesh['vertices']} vertices, {ndof} unknowns, {mesh['slaves']} contact "
+              f"slave nodes. Unit costs of the 1-rank run: {1e6 * u_kry:.2f} µs per unknown and Krylov iteration, BoomerAMG's setup "
+              f"{1e6 * u_set:.2f} µs per unknown, assembly {asm1:.2f} s per Newton iteration.", "",
+              "| ranks | runs | Newton its | Krylov its per solve | total s median [min – max] | speedup (efficiency) | assembly s per Newton it: measured / model "
+              "| Krylov s per Newton it: measured / model (communication) | measured / model, assembly + Krylov | s per Krylov iteration: speedup (efficiency) | largest part: cells, ghost share, neighbours |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
+        for p in ps:
+            sel = [r for r in rs if r["p"] == p]
+            tot = [r["total"] for r in sel]
+            asm_m = med(p, lambda r: (r["events"]["AtritoJacobian"][1] + r["events"]["AtritoResidual"][1]) / r["newton"])
+            kry_m = med(p, lambda r: per_newton(r, "KSPSolve"))
+            kn = med(p, lambda r: sum(r["krylov"]) / r["newton"])
+            sn = med(p, lambda r: r["events"]["PCSetUp"][0] / r["newton"])
+            if p == 1:
+                cmax, omax, gshare, nmax, comm, smax = mesh["cells"], mesh["vertices"], 0.0, 0, 0.0, mesh["slaves"]
+            else:
+                q = part[p]
+                cmax, omax, gshare, nmax, smax = int(q["cells_max"]), int(q["verts_owned_max"]), q["ghost_frac_max"], int(q["neighbours_max"]), q["slaves_max"]
+                exch = q["neighbours_max"] * ALPHA + 2 * 3 * 8 * q["ghosts_max"] * BETA
+                comm = (1 + N_RES) * exch + kn * (EXCH_PER_KRY * exch + ALLRED_PER_KRY * ALPHA * math.log2(p))
+            # the assembly scales with the largest part's cells, its nested contact with its slave nodes
+            asm_mod = asm1 * cmax / mesh["cells"] + con1 * (smax / mesh["slaves"] - cmax / mesh["cells"])
+            kry_mod = 3 * omax * (kn * u_kry + sn * u_set) + comm
+            ratio = (asm_m + kry_m) / (asm_mod + kry_mod)
+            kp = med(p, kry_it)
+            L.append(f"| {p} | {len(sel)} | {ints(sorted({r['newton'] for r in sel}))} | {med(p, lambda r: sum(r['krylov']) / len(r['krylov'])):.1f} | "
+                     f"{statistics.median(tot):.1f} [{min(tot):.1f} – {max(tot):.1f}] | {t1 / statistics.median(tot):.2f} ({100 * t1 / statistics.median(tot) / p:.0f} %) | "
+                     f"{asm_m:.3f} / {asm_mod:.3f} | {kry_m:.2f} / {kry_mod:.2f} ({comm:.3f}) | {ratio:.2f} | {k1 / kp:.2f} ({100 * k1 / kp / p:.0f} %) | "
+                     f"{cmax}, {gshare:.3f}, {nmax} |")
+            summary.setdefault(mesh["cells"], []).append((p, ratio, asm_m / asm_mod, (kry_m - comm) / (kry_mod - comm), comm / kry_m, k1 / kp / p))
+        L.append("")
+    if summary:
+        newton_note = "; ".join(f"{c} hexahedra: " + ", ".join(f"{n} at {ints(sorted({r['p'] for r in rs if r['newton'] == n}))} ranks"
+                                                                   for n in sorted({r["newton"] for r in rs}))
+                                for c, rs in sorted(((rs[0]["cells"], rs) for rs in cases.values())))
+        spread = max(abs(r["total"] / statistics.median(q["total"] for q in rs if q["p"] == r["p"]) - 1)
+                     for rs in cases.values() for r in rs)
+        L += ["Reading:", ""]
+        for cells, v in sorted(summary.items()):
+            p, ratio, ra, rk, cs, ek = v[-1]
+            L.append(f"- {cells} hexahedra: measured / model {min(x[1] for x in v):.2f} to {max(x[1] for x in v):.2f} over 1 to {p} ranks; at "
+                     f"{p} ranks the assembly takes {ra:.2f} times the model's time and the Krylov solves less their communication {rk:.2f} "
+                     f"times; the modelled communication is {100 * cs:.0f} % of the measured Krylov time; a Krylov iteration runs at "
+                     f"{100 * ek:.0f} % efficiency.")
+        (c0, v0), (c1, v1) = min(summary.items()), max(summary.items())
+        L += [f"- The assembly, compute-bound with one ghost exchange per call, takes {v0[-1][2]:.2f} and {v1[-1][2]:.2f} times the model's "
+              f"time at {v1[-1][0]} ranks: a core of this machine is slower with all its cores busy than alone (clock, shared memory "
+              "bandwidth or the virtual machine's placement on physical cores; these runs do not separate them), which the model "
+              "leaves out (its unit costs are one core's with the machine to itself). The Krylov solves show it at "
+              f"{c1} hexahedra ({v1[-1][3]:.2f}) more than at {c0} ({v0[-1][3]:.2f}), whose parts per rank are a quarter as large. "
+              "Read the model's times past one node with such a factor.",
+              "- The total's speedup counts the Newton iterations each run took, which can differ by one between rank counts "
+              f"(the smoother depends on the partition: {newton_note}), so it can exceed the ranks; the columns per Newton iteration "
+              "and per Krylov iteration compare the same work.",
+              f"- Repeated runs spread by up to {100 * spread:.0f} % about their median on this virtual machine with no other work on it: "
+              "the tables give medians and the range.", ""]
+    return "\n".join(L)
+
+
+def ints(v):
+    return ", ".join(str(x) for x in v)
+
+
+def measured_main(dirs):
+    if dirs:
+        data = extract_runs(dirs)
+        with open(MEASURED_JSON, "w") as f:
+            json.dump(data, f, indent=1)
+    with open(MEASURED_JSON) as f:
+        data = json.load(f)
+    work = tempfile.mkdtemp(prefix="scaling_model_")
+    body = measured_section(data, build_stats(work))
+    benchutil.write_doc_section(os.path.join(ROOT, "doc", "scaling-model.md"), MEASURED_HEADING, body)
+    print(body)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--core", type=int, default=210)
     ap.add_argument("--radial", type=int, default=490)
     ap.add_argument("--layers", type=int, default=4)
     ap.add_argument("--no-measure", action="store_true")
+    ap.add_argument("--measured", nargs="*", metavar="DIR", help="scripts/scaling.py --out folders (none: the stored runs)")
     a = ap.parse_args()
+    if a.measured is not None:
+        return measured_main(a.measured)
     work = tempfile.mkdtemp(prefix="scaling_model_")
     exe = build_stats(work)
     mesh, rows = partition(exe, a.core, a.radial, a.layers)
@@ -193,7 +365,7 @@ def main():
               "only, and a vertex on a part boundary goes to one of its parts): their imbalance grows with the number of parts, but contact is a small share of the time per iteration (`-partition_balance contact`: below). The "
               "communication share grows with the ghost share of the parts."]
     L.append("")
-    # the section that scripts/partition_balance.py writes is kept
+    # the sections that scripts/partition_balance.py and --measured write (the last ones) are kept
     doc = os.path.join(ROOT, "doc", "scaling-model.md")
     if os.path.exists(doc):
         old = open(doc).read()
