@@ -231,6 +231,10 @@ def measured_section(data, exe):
                 cmax, omax, gshare, nmax, comm, smax = mesh["cells"], mesh["vertices"], 0.0, 0, 0.0, mesh["slaves"]
             else:
                 q = part[p]
+                ran = {max(r["cells_per_rank"]) for r in rs if r["p"] == p}
+                if ran != {int(q["cells_max"])}:
+                    sys.exit(f"scaling_model: the runs at {p} ranks had at most {ints(sorted(ran))} cells per rank, "
+                             f"scripts/partition_stats.c gives {int(q['cells_max'])}: it no longer partitions as the code does")
                 cmax, omax, gshare, nmax, smax = int(q["cells_max"]), int(q["verts_owned_max"]), q["ghost_frac_max"], int(q["neighbours_max"]), q["slaves_max"]
                 exch = q["neighbours_max"] * ALPHA + 2 * 3 * 8 * q["ghosts_max"] * BETA
                 comm = (1 + N_RES) * exch + kn * (EXCH_PER_KRY * exch + ALLRED_PER_KRY * ALPHA * math.log2(p))
@@ -277,7 +281,7 @@ def ints(v):
     return ", ".join(str(x) for x in v)
 
 
-def measured_main(dirs):
+def measured_main(dirs, doc):
     if dirs:
         data = extract_runs(dirs)
         with open(MEASURED_JSON, "w") as f:
@@ -286,7 +290,7 @@ def measured_main(dirs):
         data = json.load(f)
     work = tempfile.mkdtemp(prefix="scaling_model_")
     body = measured_section(data, build_stats(work))
-    benchutil.write_doc_section(os.path.join(ROOT, "doc", "scaling-model.md"), MEASURED_HEADING, body)
+    benchutil.write_doc_section(doc, MEASURED_HEADING, body)
     print(body)
 
 
@@ -297,9 +301,10 @@ def main():
     ap.add_argument("--layers", type=int, default=4)
     ap.add_argument("--no-measure", action="store_true")
     ap.add_argument("--measured", nargs="*", metavar="DIR", help="scripts/scaling.py --out folders (none: the stored runs)")
+    ap.add_argument("--doc", default=os.path.join(ROOT, "doc", "scaling-model.md"), help="with --measured: the document whose section is written")
     a = ap.parse_args()
     if a.measured is not None:
-        return measured_main(a.measured)
+        return measured_main(a.measured, a.doc)
     work = tempfile.mkdtemp(prefix="scaling_model_")
     exe = build_stats(work)
     mesh, rows = partition(exe, a.core, a.radial, a.layers)

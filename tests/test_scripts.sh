@@ -10,3 +10,14 @@ if $PY scripts/numisheet93.py --selftest >"$OUT/numisheet93.log" 2>&1 && ! grep 
 else
   not_ok "scripts/numisheet93.py --selftest:"; indent <"$OUT/numisheet93.log"
 fi
+# the measured strong scaling beside the model (doc/scaling-model.md, "Measured on more cores"):
+# rendered again from the stored runs, it must give the committed section; the renderer also
+# checks that scripts/partition_stats.c -whole partitions the whole blank as the runs did
+cp doc/scaling-model.md "$OUT/scaling-model.md"
+if $PY scripts/scaling_model.py --measured --doc "$OUT/scaling-model.md" >"$OUT/scaling_model.log" 2>&1 &&
+   cmp -s doc/scaling-model.md "$OUT/scaling-model.md"; then
+  ok "scripts/scaling_model.py --measured: the committed section again from doc/reference/scaling-measured.json"
+else
+  not_ok "scripts/scaling_model.py --measured: the section differs from doc/scaling-model.md, or the render failed:"
+  { tail -5 "$OUT/scaling_model.log"; diff doc/scaling-model.md "$OUT/scaling-model.md" | head -20; } | indent
+fi
