@@ -350,7 +350,7 @@ def main():
               f"per neighbour of latency {ALPHA * 1e6:g} µs and the ghost values (3 doubles per vertex, both ways) at {1 / BETA / 1e9:g} GB/s, "
               f"plus {ALLRED_PER_KRY} allreduces of log2(P) latencies per Krylov iteration. Not modelled: BoomerAMG's setup communication "
               "and its coarse levels' load balance (which limit it beyond a few thousand ranks), memory bandwidth shared by the cores of a "
-              "node (the unit costs are one core's with the machine to itself), output.", "",
+              "node (the unit costs are one core's with the machine to itself; measured on 16 cores: Measured on more cores, below), output.", "",
               "| ranks | assembly s | contact s | Krylov s | communication s | time per Newton iteration s | efficiency | cell imbalance | slave imbalance |",
               "|---|---|---|---|---|---|---|---|---|"]
         for r in m:
