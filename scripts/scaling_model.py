@@ -263,10 +263,19 @@ def measured_section(data, exe):
                      f"times; the modelled communication is {100 * cs:.0f} % of the measured Krylov time; a Krylov iteration runs at "
                      f"{100 * ek:.0f} % efficiency.")
         (c0, v0), (c1, v1) = min(summary.items()), max(summary.items())
+        node = data.get("node")
+        if node:
+            a1 = statistics.median(node["alone"])
+            runs = "; ".join(f"{n} at once: median {statistics.median(t):.2f} s ({statistics.median(t) / a1:.2f} times), "
+                             f"{min(t):.2f} to {max(t):.2f}" for n, t in node["at_once"])
+            why = (f"a core of this machine is slower with all its cores busy than alone, with no communication at all: the same "
+                   f"1-rank run (`{node['case']}`, `{node['script']}`, {node['date']}) took {a1:.2f} s alone; {runs}")
+        else:
+            why = "a core of this machine is slower with all its cores busy than alone"
         L += [f"- The assembly, compute-bound with one ghost exchange per call, takes {v0[-1][2]:.2f} and {v1[-1][2]:.2f} times the model's "
-              f"time at {v1[-1][0]} ranks: a core of this machine is slower with all its cores busy than alone (clock, shared memory "
-              "bandwidth or the virtual machine's placement on physical cores; these runs do not separate them), which the model "
-              "leaves out (its unit costs are one core's with the machine to itself). The Krylov solves show it at "
+              f"time at {v1[-1][0]} ranks: {why}. The cause (clock, shared memory bandwidth or the virtual machine's placement on "
+              "physical cores) is not separated by these runs; the model leaves it out (its unit costs are one core's with the "
+              "machine to itself). The Krylov solves show it at "
               f"{c1} hexahedra ({v1[-1][3]:.2f}) more than at {c0} ({v0[-1][3]:.2f}), whose parts per rank are a quarter as large. "
               "Read the model's times past one node with such a factor.",
               "- The total's speedup counts the Newton iterations each run took, which can differ by one between rank counts "
