@@ -151,8 +151,7 @@ def extract_runs(dirs):
             with open(os.path.join(d, f"strong_np{r['p']}_rep{r['rep']}.log")) as f:
                 log = f.read()
             cmd = r["cmd"]
-            case = os.path.relpath(cmd[cmd.index("-options_file") + 1], ROOT) if "/cases/" not in cmd[cmd.index("-options_file") + 1] else \
-                "cases/" + cmd[cmd.index("-options_file") + 1].split("/cases/")[1]
+            case = "cases/" + os.path.basename(cmd[cmd.index("-options_file") + 1])  # the run's case file, named in this tree
             with open(os.path.join(ROOT, case)) as f:
                 whole = re.search(r"^-blank_quarter\s+(false|0|no)", f.read(), re.M) is not None
             m = re.search(r"mesh: (\d+) vertices, (\d+) hexahedra; .*cells per rank: ([\d ]+)", log)
@@ -166,7 +165,7 @@ def extract_runs(dirs):
                              vertices=int(m.group(1)), cells=int(m.group(2)), cells_per_rank=[int(x) for x in m.group(3).split()],
                              slaves=int(re.search(r"contact: (\d+) slave nodes", log).group(1)), newton=int(done.group(2)),
                              cuts=int(done.group(3)), krylov=its, events={k: list(v) for k, v in ev.items()},
-                             date=machine["date"], commit=machine["commit"]))
+                             args=R["args"]["strong_args"], other_load=r["other"], date=machine["date"], commit=machine["commit"]))
     return dict(machine=machine, launcher=launcher, runs=runs)
 
 
@@ -175,8 +174,8 @@ def measured_section(data, exe):
     L += [MEASURED_HEADING, "",
           f"Measured with `scripts/scaling.py` on {mi['date']}: {mi['cpu']}, {mi['cores']} cores ({mi.get('virt', '')}), {mi['mem']}, "
           f"one rank per core (`{data['launcher']}`); commit {mi['commit']}; rendered by `scripts/scaling_model.py --measured` from "
-          f"`{os.path.relpath(MEASURED_JSON, ROOT)}` (the runs' counts and event times). The machine had no other work "
-          "(scripts/scaling.py's load from /proc/stat: 0.01 cores).", "",
+          f"`{os.path.relpath(MEASURED_JSON, ROOT)}` (the runs' counts and event times). Other load on the machine during the runs "
+          f"(scripts/scaling.py, from /proc/stat): at most {max(r['other_load'] for r in data['runs']):.2f} cores.", "",
           "The model of this document applied to each measured case with that machine's own unit costs, taken from its 1-rank run "
           "of the same case (per Newton iteration: the assembly time, the contact time; per unknown: the Krylov iteration and "
           "BoomerAMG's setup), the counts measured at each rank count (Krylov iterations and setups per Newton iteration: the "
@@ -213,8 +212,7 @@ def measured_section(data, exe):
         t1 = med(1, lambda r: r["total"])
         k1 = med(1, kry_it)
         L += [f"### {mesh['cells']} hexahedra, whole blank" if whole else f"### {mesh['cells']} hexahedra", "",
-              f"`{case} -options_file cases/solver_amgsys.opts -blank_core_cells {core} -blank_radial_cells {radial}` "
-              f"(`-blank_layers {layers}`), one load step of 1 mm: {mesh['vertices']} vertices, {ndof} unknowns, {mesh['slaves']} contact "
+              f"`{case} {rs[0]['args']}` ({layers} layers): {mesh['vertices']} vertices, {ndof} unknowns, {mesh['slaves']} contact "
               f"slave nodes. Unit costs of the 1-rank run: {1e6 * u_kry:.2f} µs per unknown and Krylov iteration, BoomerAMG's setup "
               f"{1e6 * u_set:.2f} µs per unknown, assembly {asm1:.2f} s per Newton iteration.", "",
               "| ranks | runs | Newton its | Krylov its per solve | total s median [min – max] | speedup (efficiency) | assembly s per Newton it: measured / model "
@@ -293,6 +291,11 @@ def ints(v):
 def measured_main(dirs, doc):
     if dirs:
         data = extract_runs(dirs)
+        if os.path.exists(MEASURED_JSON):  # scripts/node_contention.sh's figures, entered by hand, are kept
+            with open(MEASURED_JSON) as f:
+                node = json.load(f).get("node")
+            if node:
+                data["node"] = node
         with open(MEASURED_JSON, "w") as f:
             json.dump(data, f, indent=1)
     with open(MEASURED_JSON) as f:
