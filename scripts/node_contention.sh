@@ -13,9 +13,11 @@ counts=${*:-16 8 16}
 [ -f "$case" ] || { echo "node_contention: no case file $case" >&2; exit 2; }
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
 work=$(mktemp -d)
-one() {
-  taskset -c "$1" bin/atrito -options_file "$case" -output_interval 0 -output_dir "$work/o$1" 2>&1 |
-    sed -n 's/^done: .* \([0-9.]*\) s$/\1/p'
+one() {  # the run's time, or "failed" (a run that did not finish is never left out of the list)
+  local t
+  t=$(taskset -c "$1" bin/atrito -options_file "$case" -output_interval 0 -output_dir "$work/o$1" 2>&1 |
+    sed -n 's/^done: .* \([0-9.]*\) s$/\1/p')
+  echo "${t:-failed}"
 }
 for k in 1 2; do echo "alone: $(one 0)"; done
 for n in $counts; do

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The measurements of the benchmark scripts on synthetic data (no run of the code): the
-# NUMISHEET'93 sections (theta1, theta2, rho), the square cup's draw-in and its verdict.
+# NUMISHEET'93 sections (theta1, theta2, rho), the square cup's draw-in and its verdict; the
+# measured scaling section of doc/scaling-model.md from its stored runs.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
