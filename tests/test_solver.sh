@@ -176,3 +176,15 @@ f=$(kry_of "$OUT/quarter_fast1.log"); s=$(kry_of "$OUT/quarter_sys1.log")
 [ -n "$f" ] && [ "$f" != "$s" ] && ! grep -q "never used" "$OUT/quarter_fast1.log" "$OUT/quarter_fast2.log" &&
   ok "quarter blank, cases/solver_amgsys_fast.opts: every option read, Krylov iterations $f (solver_amgsys.opts: $s)" ||
   not_ok "cases/solver_amgsys_fast.opts: Krylov '$f' against solver_amgsys.opts '$s', or an option never used"
+
+# 14. what -pc_amgsys_relax_type 3 is (src/solver/amg.c, doc/options.md): hypre sets the type on
+#     both legs of the V-cycle, one forward pass per sweep going down and going up, so amgsys
+#     takes PCHYPRE's Krylov iterations with the forward type on all legs, not those with the
+#     backward type going up
+atrito 1 disk_sys_r3 $DISK -options_file cases/solver_amgsys.opts -pc_amgsys_relax_type 3
+atrito 1 disk_hyp_fwd $DISK -options_file cases/solver_amg_sheet.opts -pc_hypre_boomeramg_grid_sweeps_all 3 -pc_hypre_boomeramg_no_CF -pc_hypre_boomeramg_relax_type_all SOR/Jacobi
+atrito 1 disk_hyp_fb $DISK -options_file cases/solver_amg_sheet.opts -pc_hypre_boomeramg_grid_sweeps_all 3 -pc_hypre_boomeramg_no_CF -pc_hypre_boomeramg_relax_type_down SOR/Jacobi -pc_hypre_boomeramg_relax_type_up backward-SOR/Jacobi
+a=$(kry_of "$OUT/disk_sys_r3.log"); b=$(kry_of "$OUT/disk_hyp_fwd.log"); c=$(kry_of "$OUT/disk_hyp_fb.log")
+[ -n "$a" ] && [ "$a" = "$b" ] && [ -n "$c" ] && [ "$a" != "$c" ] &&
+  ok "whole blank: amgsys relax type 3 = PCHYPRE forward hybrid Gauss-Seidel on every leg ($a), not backward going up ($c)" ||
+  not_ok "whole blank: amgsys relax type 3 '$a' against PCHYPRE forward on all legs '$b' and backward going up '$c'"
