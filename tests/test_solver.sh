@@ -164,13 +164,14 @@ a=$(kry_of "$OUT/disk_sys_cf.log"); b=$(kry_of "$OUT/disk_hyp3.log"); c=$(kry_of
   ok "whole blank: amgsys -pc_amgsys_relax_order CF = PCHYPRE ($a), natural = PCHYPRE -pc_hypre_boomeramg_no_CF ($c)" ||
   not_ok "whole blank: amgsys CF '$a' against PCHYPRE '$b'; natural '$c' against PCHYPRE no_CF '$d'"
 
-# 13. cases/solver_amgsys_fast.opts (hypre's relax type 3 and GMRES(100): tuned for the time per
-#     Newton iteration rather than the Krylov iterations, doc/performance.md): the quarter blank
-#     of section 10 at 1 and 2 ranks against LU; every option of the file read (no "never used"
-#     warning), and the Krylov counts not those of cases/solver_amgsys.opts
+# 13. cases/solver_amgsys_fast.opts (one sweep of the symmetric smoother, GMRES(100), the Jacobian
+#     by coordinate assembly into hypre's format: tuned for the time per Newton iteration rather
+#     than the Krylov iterations, doc/performance.md): the quarter blank of section 10 at 1 and 2
+#     ranks against LU; every option of the file read (no "never used" warning), and the Krylov
+#     counts not those of cases/solver_amgsys.opts
 for np in 1 2; do
   atrito $np quarter_fast$np $QUARTER -options_file cases/solver_amgsys_fast.opts &&
-    compare "$OUT/quarter_lu/history.csv" "$OUT/quarter_fast$np/history.csv" 6 "quarter blank with friction: GMRES + amgsys, relax type 3 (np=$np) against LU"
+    compare "$OUT/quarter_lu/history.csv" "$OUT/quarter_fast$np/history.csv" 6 "quarter blank with friction: GMRES + amgsys, one sweep, COO into hypre (np=$np) against LU"
 done
 f=$(kry_of "$OUT/quarter_fast1.log"); s=$(kry_of "$OUT/quarter_sys1.log")
 [ -n "$f" ] && [ "$f" != "$s" ] && ! grep -q "never used" "$OUT/quarter_fast1.log" "$OUT/quarter_fast2.log" &&
@@ -188,3 +189,14 @@ a=$(kry_of "$OUT/disk_sys_r3.log"); b=$(kry_of "$OUT/disk_hyp_fwd.log"); c=$(kry
 [ -n "$a" ] && [ "$a" = "$b" ] && [ -n "$c" ] && [ "$a" != "$c" ] &&
   ok "whole blank: amgsys relax type 3 = PCHYPRE forward hybrid Gauss-Seidel on every leg ($a), not backward going up ($c)" ||
   not_ok "whole blank: amgsys relax type 3 '$a' against PCHYPRE forward on all legs '$b' and backward going up '$c'"
+
+# 15. the Jacobian by coordinate assembly into hypre's format (cases/solver_amgsys_fast.opts:
+#     PETSc's MATHYPRE with an AIJ matrix sharing its values, src/solver/problem.c):
+#     -snes_test_jacobian with friction (block_sphere: sticking and slipping nodes), and on the
+#     whole blank at 2 ranks the same history as MatSetValues into hypre's format
+atrito 1 jac_hypre_coo -options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 -options_file cases/solver_amgsys_fast.opts -snes_test_jacobian &&
+  pycheck snes_test_jacobian "$OUT/jac_hypre_coo.log" 10 1e-5 "the Jacobian by COO into hypre's format, with contact on a sphere" --contact "$OUT/jac_hypre_coo"
+TJ="-options_file cases/hemisphere_friction_disk.opts -blank_core_cells 2 -blank_radial_cells 5 -blank_layers 1 -tool_punch_motion 0,0,2 -load_steps 2 -load_dt_max 0.5 -output_interval 0"
+atrito 2 hypre_coo2 $TJ -options_file cases/solver_amgsys_fast.opts
+atrito 2 hypre_msv2 $TJ -options_file cases/solver_amgsys_fast.opts -assembly_coo 0
+compare "$OUT/hypre_msv2/history.csv" "$OUT/hypre_coo2/history.csv" 6 "whole blank (np=2): the Jacobian by COO into hypre's format against MatSetValues into it"

@@ -21,11 +21,12 @@
    -pc_amgsys_coarsen_type, -pc_amgsys_interp_type, -pc_amgsys_P_max, -pc_amgsys_agg_nl,
    -pc_amgsys_agg_interp_type, -pc_amgsys_sweeps, -pc_amgsys_relax_type, -pc_amgsys_relax_order;
    defaults those of cases/solver_amg_sheet.opts (PCHYPRE there) but for the relaxation order,
-   hypre's natural one here. cases/solver_amgsys_fast.opts takes relaxation type 3 (one forward
-   pass per sweep, going down and going up alike: hypre's SetRelaxType sets the same type on both
-   legs, and the Krylov counts equal PCHYPRE's with -pc_hypre_boomeramg_relax_type_all SOR/Jacobi;
-   the V-cycle is not symmetric) for the symmetric hybrid Gauss-Seidel (6, a forward and a
-   backward pass in every sweep): more Krylov iterations, a third of the time per V-cycle.
+   hypre's natural one here. cases/solver_amgsys_fast.opts takes one sweep of the symmetric
+   hybrid Gauss-Seidel (6, a forward and a backward pass in every sweep) instead of three. Type 3
+   makes one forward pass per sweep, going down and going up alike (hypre's SetRelaxType sets the
+   same type on both legs, and the Krylov counts equal PCHYPRE's with
+   -pc_hypre_boomeramg_relax_type_all SOR/Jacobi): a V-cycle that is not symmetric, whose
+   iterations grew to 200 per solve at 200 000 hexahedra as the contact spread.
    The Jacobian is used in hypre's format as it is (-assembly_mat_type hypre), any other type is
    converted at each setup. One V-cycle per application. hypre's nodal coarsening (SetNodal) is
    not offered: it needs every node to have all three unknowns, which is what a constrained
@@ -258,7 +259,7 @@ static PetscErrorCode PCSetFromOptions_AMGSys(PC pc, PetscOptionItems *PetscOpti
   PetscCall(PetscOptionsEList("-pc_amgsys_agg_interp_type", "Interpolation on the levels of aggressive coarsening (multipass, or hypre's two-stage ones)", NULL, AggInterp, 7, AggInterp[ai], &ai, NULL));
   PetscCall(PetscOptionsEList("-pc_amgsys_relax_order", "Order of the smoothing: natural (hypre's default), or CF (coarse points first going down, fine first going up: PCHYPRE's default)", NULL, Order, 2, Order[oi], &oi, NULL));
   PetscCall(PetscOptionsInt("-pc_amgsys_sweeps", "Smoothing sweeps down and up", NULL, a->sweeps, &a->sweeps, NULL));
-  PetscCall(PetscOptionsInt("-pc_amgsys_relax_type", "hypre's relaxation type (6: symmetric Gauss-Seidel/Jacobi hybrid; 3: Gauss-Seidel/Jacobi hybrid, forward passes down and up, a third of 6's cost per V-cycle, not symmetric; 8: l1 symmetric Gauss-Seidel; 18: l1 Jacobi)", NULL, a->relax, &a->relax, NULL));
+  PetscCall(PetscOptionsInt("-pc_amgsys_relax_type", "hypre's relaxation type (6: symmetric Gauss-Seidel/Jacobi hybrid; 3: Gauss-Seidel/Jacobi hybrid, forward passes down and up, half of 6's cost per sweep, not symmetric; 8: l1 symmetric Gauss-Seidel; 18: l1 Jacobi)", NULL, a->relax, &a->relax, NULL));
   PetscOptionsHeadEnd();
   PetscCheck(a->theta > 0 && a->theta < 1, PetscObjectComm((PetscObject)pc), PETSC_ERR_USER_INPUT, "-pc_amgsys_strong_threshold %g: between 0 and 1", (double)a->theta);
   PetscCheck(a->sweeps >= 1 && a->pmax >= 0 && a->aggnl >= 0, PetscObjectComm((PetscObject)pc), PETSC_ERR_USER_INPUT, "-pc_amgsys_sweeps at least 1, -pc_amgsys_P_max and -pc_amgsys_agg_nl at least 0");

@@ -431,6 +431,7 @@ static PetscErrorCode CreateHypreJacobian(Problem *pb, Mat *J)
   PetscCall(MatSetSizes(*J, nl, nl, N, N));
   PetscCall(MatSetBlockSize(*J, bs));
   PetscCall(MatSetType(*J, MATHYPRE));
+  if (pb->assembly_coo) PetscFunctionReturn(0); /* the coordinate preallocation below makes the pattern (through an AIJ matrix sharing hypre's values) */
   PetscCall(MatSetOption(*J, MAT_SORTED_FULL, PETSC_TRUE));
   PetscCall(PetscCalloc4(nl / bs, &dnz, nl / bs, &onz, nl / bs, &dnzu, nl / bs, &onzu));
   PetscCall(DMPlexPreallocateOperator(m->dm, bs, dnz, onz, dnzu, onzu, *J, PETSC_TRUE));
@@ -490,10 +491,10 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   PetscCall(VecDuplicate(pb->Uloc, &pb->Floc));
 
   PetscCheck(!pb->mat_type[0] || !pb->ntu, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s: not with force-driven tools (their unknowns extend an AIJ matrix); leave it out", pb->mat_type);
-  PetscCheck(!pb->mat_type[0] || !pb->assembly_coo, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s needs the MatSetValues assembly: add -assembly_coo 0", pb->mat_type);
   if (!pb->ntu) {
     PetscBool ishypre;
     PetscCall(PetscStrcmp(pb->mat_type, MATHYPRE, &ishypre));
+    PetscCheck(!pb->mat_type[0] || ishypre || !pb->assembly_coo, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s needs the MatSetValues assembly: add -assembly_coo 0", pb->mat_type);
     if (ishypre) PetscCall(CreateHypreJacobian(pb, &pb->J));
     else {
       if (pb->mat_type[0]) PetscCall(DMSetMatType(m->dm, pb->mat_type));
