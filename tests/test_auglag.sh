@@ -37,14 +37,17 @@ atrito 1 sph1 -options_file cases/block_sphere.opts -output_interval 0 $AUG -new
 atrito 2 sph2 -options_file cases/block_sphere.opts -output_interval 0 $AUG -newton_keep_contact frictionless
 compare "$OUT/sph1/contact.csv" "$OUT/sph2/contact.csv" 8 "augmented block and sphere: contact history at np=1 and np=2"
 atrito 1 sphd -options_file cases/block_sphere.opts -output_interval 0 $AUG
-#    the default at 2 ranks: every column to 1e-8, the reactions on the scale of the file's forces
-#    (fy is the round-off of fz: 6e-9 of it apart at 1 and 2 ranks)
+#    the default at 2 ranks: every column but fy to 1e-8, the reactions on the scale of the file's
+#    forces; fy, zero by symmetry, is held to the symmetry bound at both rank counts: with `all`
+#    the paper's frame recurrence turns the frame by a rank-dependent round-off that the
+#    friction carries (doc/performance.md, "Why `all` broke the symmetry of block_sphere"): fy
+#    6e-9 of fz apart at 1 and 2 ranks on one machine, 1e-7 on another
 atrito 2 sphd2 -options_file cases/block_sphere.opts -output_interval 0 $AUG
-$PY tests/compare_csv.py "$OUT/sphd/contact.csv" "$OUT/sphd2/contact.csv" --rtol 1e-8 --skip 'residual_*' --int-tol newton_its=1 --label "augmented block and sphere, default keep (all): contact history at np=1 and np=2, forces on the forces' scale"
-$PY - "$OUT/sphd/contact.csv" "$OUT/sph1/contact.csv" <<'PY'
+$PY tests/compare_csv.py "$OUT/sphd/contact.csv" "$OUT/sphd2/contact.csv" --rtol 1e-8 --skip 'residual_*,fy' --int-tol newton_its=1 --label "augmented block and sphere, default keep (all): contact history at np=1 and np=2 but fy, forces on the forces' scale"
+$PY - "$OUT/sphd/contact.csv" "$OUT/sphd2/contact.csv" "$OUT/sph1/contact.csv" <<'PY'
 import csv, sys
 w = [max(abs(float(r["fy"])) / max(abs(float(r["fz"])), 1e-30) for r in csv.DictReader(open(f))) for f in sys.argv[1:]]
-print(("ok - " if w[0] < 1e-6 else "not ok - ") + f"augmented block and sphere, default keep (all): |fy|/|fz| at most {w[0]:.1e} (< 1e-6; with -newton_keep_contact frictionless {w[1]:.1e})")
+print(("ok - " if max(w[0], w[1]) < 1e-6 else "not ok - ") + f"augmented block and sphere, default keep (all): |fy|/|fz| at most {w[0]:.1e} (np=1) and {w[1]:.1e} (np=2) (< 1e-6; with -newton_keep_contact frictionless {w[2]:.1e})")
 PY
 
 # 4. restart in the middle of an augmented run (the multipliers are in the checkpoint): the same

@@ -73,8 +73,16 @@ if what == "release":
     r = [x for x in rows(d, "contact.csv") if x["tool"] == tool]
     before = [x for x in r if float(x["time"]) < T - 1e-12]
     after = [x for x in r if float(x["time"]) >= T - 1e-12]
-    ok = len(after) >= 2 and (T <= 0 or any(int(x["active"]) > 0 for x in before))
-    ok = ok and all(int(x["active"]) == 0 and abs(float(x["fz"])) == 0 for x in after)
-    print(("ok" if ok else "not ok") + f" - {d.split('/')[-1]}: tool {tool} pressed before t = {T:g} and, with its force ramped to zero, releases the sheet ({len(after)} steps with no node pressed and no force; no singular matrix)")
+    # at t = T itself the target force is zero and the holder's equilibrium leaves nodes at a gap
+    # of round-off: some may still touch, with a force of round-off on the scale of the force
+    # before (1e-9 of it); after T no node is pressed and the force is exactly zero
+    scale = max([abs(float(x["fz"])) for x in before] + [0.0])
+    at = [x for x in after if abs(float(x["time"]) - T) <= 1e-12]
+    later = [x for x in after if abs(float(x["time"]) - T) > 1e-12]
+    ok = len(later) >= 2 and (T <= 0 or any(int(x["active"]) > 0 for x in before))
+    ok = ok and all(abs(float(x["fz"])) <= 1e-9 * scale for x in at)
+    ok = ok and all(int(x["active"]) == 0 and abs(float(x["fz"])) == 0 for x in later)
+    fat = max([abs(float(x["fz"])) for x in at] + [0.0])
+    print(("ok" if ok else "not ok") + f" - {d.split('/')[-1]}: tool {tool} pressed before t = {T:g} and, with its force ramped to zero, releases the sheet ({len(later)} steps after with no node pressed and no force; at t = {T:g} {fat:.1e} N against {scale:.3g} before; no singular matrix)")
     sys.exit(0 if ok else 1)
 sys.exit(f"unknown check {what}")
