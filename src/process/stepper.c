@@ -642,7 +642,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         if (st->kry_on && st->ksp_target > 0) PetscCall(KSPSetTolerances(ksp, st->ksp_rtol0, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT)); /* (-newton_ksp_target) */
         PetscCall(SNESGetConvergedReason(snes, &reason));
         PetscCall(SNESGetIterationNumber(snes, &its1));
-        if (reason == SNES_DIVERGED_LINE_SEARCH && st->floor_tol > 0) {
+        if ((reason == SNES_DIVERGED_LINE_SEARCH || reason == SNES_DIVERGED_MAX_IT) && st->floor_tol > 0) {
           /* the residual's floor (-newton_floor_tol): the line search found no decrease along a
              Newton correction far below any length of the model. The residual is then at the level
              that the local solvers' tolerances (return maps, enhanced parameters) leave in it, and
@@ -650,7 +650,10 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
              a smaller step starts from the same floor (seen: the U-channel's springback stage, which
              starts in equilibrium at |R| 1.5e-8 N and whose Newton correction of 3e-9 mm raised |R|
              at every length down to 1e-13 of itself). The direction is the line search's Y, left
-             unscaled by the failed search. */
+             unscaled by the failed search. The same holds for a solve that ran out of iterations
+             with its last Newton correction that small: at the floor, round-off can let the line
+             search find ever smaller decreases instead of none (2-rank runs of tests/test_stages.sh's
+             floor case, whose round-off varies from run to run, ended either way). */
           SNESLineSearch ls;
           Vec            Y;
           PetscReal      ymax;
