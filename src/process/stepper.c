@@ -649,11 +649,13 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
              the state is the solution to within that correction; cutting the step cannot help, since
              a smaller step starts from the same floor (seen: the U-channel's springback stage, which
              starts in equilibrium at |R| 1.5e-8 N and whose Newton correction of 3e-9 mm raised |R|
-             at every length down to 1e-13 of itself). The direction is the line search's Y, left
-             unscaled by the failed search. The same holds for a solve that ran out of iterations
-             with its last Newton correction that small: at the floor, round-off can let the line
-             search find ever smaller decreases instead of none (2-rank runs of tests/test_stages.sh's
-             floor case, whose round-off varies from run to run, ended either way). */
+             at every length down to 1e-13 of itself). The same holds for a solve that ran out of
+             iterations with its last Newton correction that small: at the floor, round-off can let
+             the line search find ever smaller decreases instead of none (2-rank runs of
+             tests/test_stages.sh's floor case, whose round-off varies from run to run, ended either
+             way); its state lies within (1 - lambda) of that correction of Newton's estimate. The
+             correction is the line search's Y: PETSc's backtracking and the watchdog
+             (linesearch.c) scale only the step they take, never Y, whether they fail or not. */
           SNESLineSearch ls;
           Vec            Y;
           PetscReal      ymax;
