@@ -32,8 +32,13 @@ typedef struct {
   PetscReal floor_tol;     /* -newton_floor_tol: a solve whose line search fails on a Newton
                               correction below this fraction of the model's size has converged
                               (the residual at its floor; 0: never)                          */
+  PetscReal floor_force_tol; /* -newton_floor_force_tol: ... and only when |R| is below this
+                              fraction of the internal forces' scale (ProblemForceScale): a
+                              small correction on a large residual is a jump, not the floor   */
   PetscReal model_size;    /* the diagonal of the mesh's bounding box                          */
   PetscInt  nfloor;        /* solves accepted so                                              */
+  PetscInt  njump;         /* solves that ended so on a correction as small but a residual
+                              above -newton_floor_force_tol of the forces' scale (cut)       */
   PetscBool domain_backtrack; /* -newton_domain_backtrack: a failed trial point of PETSc's
                               backtracking search is rejected, not the end of the solve       */
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */

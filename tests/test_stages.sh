@@ -283,6 +283,28 @@ atrito_rc 1 floor_off $CASE $FLOOR -newton_floor_tol 0
 if [ "$RC" -ne 0 ] && [ "$RC" -lt 124 ] && grep -q 'DIVERGED_LINE_SEARCH' "$OUT/floor_off.log"; then ok "residual floor off (-newton_floor_tol 0): the run stops, $(grep -o 'after [0-9]* cuts' "$OUT/floor_off.log")"
 else not_ok "residual floor off: exit $RC, $(tail -n 1 "$OUT/floor_off.log")"; fi
 
+# 7d'. a small Newton correction on a large residual is a jump of the residual, not its floor: the
+# whole blank of 96 hexahedra (analytic tools, friction) pushed 10 mm in 2 steps stalls in a solve
+# on corrections of 1e-9 mm with |R| 2.3e4 N (0.4 of the forces' scale); it must be cut
+# (-newton_floor_force_tol), not accepted (a build that accepted it stored a step with |R| 1.6e-2 of
+# its initial residual, which the check below rejects), and the run ends at 1 and 2 ranks alike
+JUMP="-options_file cases/hemisphere_friction_disk.opts -blank_core_cells 2 -blank_radial_cells 5 -blank_layers 1 -tool_punch_motion 0,0,10 -load_steps 2 -load_dt_max 0.5 -output_interval 0 -ksp_type preonly -pc_type lu"
+for np in 1 2; do
+  if atrito $np jump_np$np $JUMP; then
+    n=$(grep -o 'residual jumps: [0-9]*' "$OUT/jump_np$np.log" | grep -o '[0-9]*$')
+    if [ -n "$n" ] && [ "$n" -ge 1 ] && ! grep -q 'residual floor' "$OUT/jump_np$np.log"; then ok "residual jump (np=$np): $n solves stalled on a jump, cut, none accepted at the floor"
+    else not_ok "residual jump (np=$np): $(grep -E '^(done|residual)' "$OUT/jump_np$np.log" | tr '\n' ' ')"; fi
+    $PY - "$OUT/jump_np$np/history.csv" $np <<'PYEOF'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+worst = max(float(r["residual_final"]) / float(r["residual_initial"]) for r in rows)
+t = float(rows[-1]["time"]) if rows else 0
+print(("ok - " if rows and worst <= 1e-6 and abs(t - 1) < 1e-12 else "not ok - ") + f"residual jump (np={sys.argv[2]}): {len(rows)} steps to time {t}, largest final/initial residual {worst:.1e} (at most 1e-6)")
+PYEOF
+  fi
+done
+$PY tests/compare_csv.py "$OUT/jump_np1/history.csv" "$OUT/jump_np2/history.csv" --rtol 1e-8 --atol 1e-9 --skip 'residual_*' --label "residual jump np=1 against np=2, history.csv, 1e-8"
+
 # 7e. a force-driven tool released by its nodal forces (cases/forcetool_holder.opts, the holder
 # driven by -1000 N along z, then released): its force follows the line, its unknown holds its
 # position through the release, 1 and 2 ranks agree (the die's normal force smoothed over 1e-4: with
@@ -326,4 +348,5 @@ bad "-stage_springback_release: tool 'punch' is not present in the stage" 2 $REL
 bad "Unknown option both for -stage_release_release_mode" 2 $REL -stage_release_release_mode both
 bad "Unknown option secant for -stage_lift_predictor" 1 $CASE -stage_lift_predictor secant
 bad "-newton_floor_tol 0.1 must lie in [0, 1e-3)" 1 $CASE -newton_floor_tol 0.1
+bad "-newton_floor_force_tol 0 must lie in (0, 1e-2)" 1 $CASE -newton_floor_force_tol 0
 bad "-stage_hold_tools: tool holder is removed at time 1. while a force of -1000. along z still drives it" 1 -options_file cases/forcetool_holder.opts -stage_names press,hold -stage_hold_tools die
