@@ -348,5 +348,5 @@ bad "-stage_springback_release: tool 'punch' is not present in the stage" 2 $REL
 bad "Unknown option both for -stage_release_release_mode" 2 $REL -stage_release_release_mode both
 bad "Unknown option secant for -stage_lift_predictor" 1 $CASE -stage_lift_predictor secant
 bad "-newton_floor_tol 0.1 must lie in [0, 1e-3)" 1 $CASE -newton_floor_tol 0.1
-bad "-newton_floor_force_tol 0 must lie in (0, 1e-2)" 1 $CASE -newton_floor_force_tol 0
+bad "-newton_floor_force_tol 0.5 must lie in (0, 1e-2)" 1 $CASE -newton_floor_force_tol 0.5
 bad "-stage_hold_tools: tool holder is removed at time 1. while a force of -1000. along z still drives it" 1 -options_file cases/forcetool_holder.opts -stage_names press,hold -stage_hold_tools die
