@@ -660,9 +660,9 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
              way); its state lies within (1 - lambda) of that correction of Newton's estimate. The
              correction is the line search's Y: PETSc's backtracking and the watchdog
              (linesearch.c) scale only the step they take, never Y, whether they fail or not.
-             A small correction alone does not make the floor: where the residual jumps (a node at
-             a kink of the contact law or at the edge of a tool's range), Newton's correction
-             shrinks towards the jump while |R| stays at the size of the forces (seen: a whole blank
+             A small correction alone does not make the floor: where the residual is not smooth (a
+             node at the kink of the contact law at gap 0, or at the edge of a tool's range), Newton's
+             correction shrinks towards the kink while |R| stays at the size of the forces (seen: a whole blank
              of 96 hexahedra pushed 3.75 mm in one step stalled at |R| 2.3e4 N, 0.4 of the forces'
              scale, on a correction of 4.6e-9 mm). The residual must also be below
              -newton_floor_force_tol of the internal forces' scale (ProblemForceScale, from the
