@@ -34,7 +34,7 @@ typedef struct {
                               (the residual at its floor; 0: never)                          */
   PetscReal floor_force_tol; /* -newton_floor_force_tol: ... and only when |R| is below this
                               fraction of the internal forces' scale (ProblemForceScale): a
-                              small correction on a large residual is a jump, not the floor   */
+                              small correction on a large residual is a kink, not the floor   */
   PetscReal model_size;    /* the diagonal of the mesh's bounding box                          */
   PetscInt  nfloor;        /* solves accepted so                                              */
   PetscInt  njump;         /* solves that ended so on a correction as small but a residual

@@ -57,7 +57,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     PetscCall(PetscOptionsBool("-newton_domain_backtrack", "In PETSc's backtracking line search a trial point where the residual cannot be evaluated (an element inverted, a return map or a contact projection that did not converge) is rejected and the step shortened, instead of ending the Newton solve and cutting the load step", NULL, st->domain_backtrack, &st->domain_backtrack, NULL));
     PetscCall(PetscOptionsReal("-newton_floor_tol", "A Newton solve whose line search fails has converged when the Newton correction's largest component is below this fraction of the model's size (the diagonal of the mesh's box): the residual is at the floor that the local solvers' tolerances leave, and no step along the correction lowers it (0: the step is cut instead)", NULL, st->floor_tol, &st->floor_tol, NULL));
     PetscCheck(st->floor_tol >= 0 && st->floor_tol < 1e-3, comm, PETSC_ERR_USER_INPUT, "-newton_floor_tol %g must lie in [0, 1e-3)", (double)st->floor_tol);
-    PetscCall(PetscOptionsReal("-newton_floor_force_tol", "The residual's floor (-newton_floor_tol) is accepted only when |R| is also below this fraction of the internal forces' scale, sqrt(sum over the elements of |f_e|^2): a small Newton correction on a large residual is a jump of the residual (a node at a kink of the contact law or of a tool's range), not its floor, and the step is cut", NULL, st->floor_force_tol, &st->floor_force_tol, NULL));
+    PetscCall(PetscOptionsReal("-newton_floor_force_tol", "The residual's floor (-newton_floor_tol) is accepted only when |R| is also below this fraction of the internal forces' scale, sqrt(sum over the elements of |f_e|^2): a small Newton correction on a large residual is a point where the residual is not smooth (a node at the kink of the contact law at gap 0, or at the edge of a tool's range), not its floor, and the step is cut", NULL, st->floor_force_tol, &st->floor_force_tol, NULL));
     PetscCheck(st->floor_force_tol > 0 && st->floor_force_tol < 1e-2, comm, PETSC_ERR_USER_INPUT, "-newton_floor_force_tol %g must lie in (0, 1e-2)", (double)st->floor_force_tol);
     {
       const char *preds[] = {"none", "extrapolate", "tangent", "auto", "Predictor", "PREDICTOR_", NULL};
@@ -678,13 +678,13 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
           PetscCall(SNESGetFunction(snes, &R, NULL, NULL));
           PetscCall(VecNorm(R, NORM_2, &rnorm));
           PetscCall(ProblemForceScale(pb, &fscale));
-          if (ymax <= st->floor_tol * st->model_size && rnorm <= st->floor_force_tol * fscale) {
-            reason = SNES_CONVERGED_SNORM_RELATIVE;
-            st->nfloor++;
-            PetscCall(PetscInfo(snes, "converged at the residual's floor: Newton correction %g <= %g, |R| %g <= %g\n", (double)ymax, (double)(st->floor_tol * st->model_size), (double)rnorm, (double)(st->floor_force_tol * fscale)));
-          } else if (ymax <= st->floor_tol * st->model_size) {
-            st->njump++;
-            PetscCall(PetscInfo(snes, "not at the residual's floor: Newton correction %g <= %g, but |R| %g > %g\n", (double)ymax, (double)(st->floor_tol * st->model_size), (double)rnorm, (double)(st->floor_force_tol * fscale)));
+          if (ymax <= st->floor_tol * st->model_size) {
+            const PetscBool floor = rnorm <= st->floor_force_tol * fscale ? PETSC_TRUE : PETSC_FALSE;
+            if (floor) {
+              reason = SNES_CONVERGED_SNORM_RELATIVE;
+              st->nfloor++;
+            } else st->njump++;
+            PetscCall(PetscInfo(snes, "%s: Newton correction %g <= %g, |R| %g %s %g\n", floor ? "converged at the residual's floor" : "not at the residual's floor", (double)ymax, (double)(st->floor_tol * st->model_size), (double)rnorm, floor ? "<=" : ">", (double)(st->floor_force_tol * fscale)));
           }
         }
         if (st->aug_loops == 0) r0 = st->r_true0 >= 0 ? st->r_true0 : rhist[0];
