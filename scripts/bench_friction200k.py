@@ -1,0 +1,199 @@
+#!/usr/bin/python3
+"""The 200 000-hexahedra friction case to 40 mm on 2 ranks: time, steps, Newton and Krylov
+iterations, the time per Newton iteration and its split, the punch force, for solver variants.
+
+  /usr/bin/python3 scripts/bench_friction200k.py [--variant TAG:OPTIONS ...] [--ranks 2]
+        [--cells NC,NR] [--probe 5] [--logdir DIR] [--reuse] [--output doc/performance.md]
+
+What it does
+  1. Before each variant, times the seed case without friction (cases/hemisphere_frictionless.opts,
+     1 rank, --probe runs, the median): the machine's speed at that time, since the machine is
+     shared and its speed varies by a factor of two over a day; compare variants only at the same
+     probe time.
+  2. Runs cases/hemisphere_friction_disk.opts (whole blank, 4 layers, friction mu 0.15, analytic
+     tools) with -blank_core_cells NC -blank_radial_cells NR (default 46,113: 200 192 hexahedra),
+     cases/solver_amgsys_fast.opts, no field output, -log_view -memory_view, and the variant's
+     OPTIONS, on --ranks ranks, one variant after the other (never two at once: the run is bound by
+     the memory's bandwidth). Default variants, at the same increments (-load_grow_its 6: the
+     increment grows after the 6-iteration first steps, to the case's -load_dt_max): one sweep of
+     hypre's l1-Jacobi smoother (-pc_amgsys_relax_type 18), and the file (one sweep of its
+     symmetric hybrid Gauss-Seidel).
+  3. Reads from each log the progress lines (steps, Newton and Krylov iterations, most Krylov
+     iterations per solve), the summary line, -log_view's KSPSolve, PCSetUp, SNESJacobianEval and
+     SNESFunctionEval, the peak resident size; from contact.csv the punch force at the last step.
+  4. Writes the section "## The 200 000-hexahedra friction case" of --output, keeping its others.
+
+--logdir keeps the runs (DIR/TAG/: log, history.csv, contact.csv, probe; default a temporary
+directory, removed); --reuse reads DIR/TAG/ instead of running (to rewrite the section from runs
+made earlier). Standard library only.
+"""
+import argparse
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import benchutil
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CASE = "cases/hemisphere_friction_disk.opts"
+SOLVER = "cases/solver_amgsys_fast.opts"
+SEED = "cases/hemisphere_frictionless.opts"
+HEADING = "## The 200 000-hexahedra friction case"
+TARGET_S = 1800.0
+
+STEP_RE = re.compile(r"^step\s+(\d+)\s+time\s+([\d.]+)\s+its\s+(\d+)\s+krylov\s+(\d+)\s+\(most\s+(\d+)\)", re.M)
+DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
+MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
+MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)")
+
+
+def event_time(text, name):
+    """-log_view's max time of an event, or None"""
+    m = re.search(r"^" + re.escape(name) + r"\s+\d+\s+[\d.]+\s+([\d.eE+-]+)", text, re.M)
+    return float(m.group(1)) if m else None
+
+
+def probe(binary, n, work):
+    ts = []
+    for _ in range(n):
+        t0 = time.time()
+        r = subprocess.run([binary, "-options_file", SEED, "-output_interval", "0", "-output_dir", os.path.join(work, "probe_out")],
+                           cwd=ROOT, env=benchutil.run_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        if r.returncode:
+            sys.exit(f"bench_friction200k: the probe ({SEED}) failed with exit code {r.returncode}")
+        ts.append(time.time() - t0)
+    return statistics.median(ts)
+
+
+def run(binary, tag, opts, args, logdir):
+    d = os.path.join(logdir, tag)
+    os.makedirs(d, exist_ok=True)
+    if args.probe > 0:
+        with open(os.path.join(d, "probe"), "w") as f:
+            f.write(f"{probe(binary, args.probe, d):.2f}\n")
+    nc, nr = args.cells.split(",")
+    cmd = ["mpiexec", "-n", str(args.ranks), binary, "-options_file", CASE, "-options_file", SOLVER,
+           "-blank_core_cells", nc, "-blank_radial_cells", nr, "-output_interval", "0", "-output_dir", d,
+           "-log_view", "-memory_view"] + opts.split()
+    print(f"bench_friction200k: {tag}: {' '.join(cmd)}", flush=True)
+    with open(os.path.join(d, "log"), "w") as f:
+        f.write(f"# start {time.strftime('%Y-%m-%d %H:%M:%S %Z')} load {os.getloadavg()[0]:.2f}\n# options {opts}\n")
+        f.flush()
+        r = subprocess.run(cmd, cwd=ROOT, env=benchutil.run_env(), stdout=f, stderr=subprocess.STDOUT)
+        f.write(f"# end {time.strftime('%Y-%m-%d %H:%M:%S %Z')} rc {r.returncode}\n")
+
+
+def parse(logdir, tag):
+    d = os.path.join(logdir, tag)
+    with open(os.path.join(d, "log")) as f:
+        text = f.read()
+    row = dict(tag=tag, opts="", probe=None, done=None)
+    m = re.search(r"^# options (.*)$", text, re.M)
+    row["opts"] = m.group(1).strip() if m else ""
+    try:
+        with open(os.path.join(d, "probe")) as f:
+            row["probe"] = float(f.read().split()[0])
+    except (OSError, ValueError, IndexError):
+        pass
+    m = MESH_RE.search(text)
+    row["hex"] = int(m.group(2)) if m else None
+    steps = STEP_RE.findall(text)
+    row["krylov"] = sum(int(s[3]) for s in steps)
+    row["most"] = [int(s[4]) for s in steps]
+    m = DONE_RE.search(text)
+    if m:
+        row["done"] = dict(steps=int(m.group(1)), its=int(m.group(2)), cuts=int(m.group(3)), time=float(m.group(4)))
+    for key, ev in (("ksp", "KSPSolve"), ("setup", "PCSetUp"), ("jac", "SNESJacobianEval"), ("res", "SNESFunctionEval"), ("solve", "SNESSolve")):
+        row[key] = event_time(text, ev)
+    m = MEM_RE.search(text)
+    row["peak"] = float(m.group(2)) if m else None
+    row["force"] = None
+    try:
+        with open(os.path.join(d, "contact.csv")) as f:
+            lines = f.read().splitlines()
+        head = lines[0].split(",")
+        last = [l.split(",") for l in lines[1:] if l.split(",")[head.index("tool")] == "punch"]
+        if last:
+            row["force"] = float(last[-1][head.index("force")])
+            row["travel"] = float(last[-1][head.index("travel")])
+    except (OSError, ValueError, IndexError):
+        pass
+    return row
+
+
+def section(rows):
+    out = [HEADING, "", benchutil.measured_by("bench_friction200k.py", ROOT), "",
+           f"`{CASE}` with `{SOLVER}` and the variant's options, whole blank, 4 layers, friction "
+           "mu 0.15, to 40 mm, no field output, one variant after the other, no other job. The probe: the "
+           f"seed case without friction (`{SEED}`, 1 rank, median) just before the variant, the machine's "
+           "speed at that time. Target: under 30 minutes on 2 ranks.", "",
+           "| variant | options | probe (s) | time (s) | steps | Newton | cuts | Krylov (per Newton) | most per solve: steps 1-3, then | s per Newton: all (Krylov, setup, Jacobian, residuals) | punch force at 40 mm (N) | peak memory, largest rank (GB, -memory_view) |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        d = r["done"]
+        if d is None:
+            out.append(f"| {r['tag']} | `{r['opts']}` | {r['probe'] or '—'} | did not finish ({len(r['most'])} steps) | | | | | | | | |")
+            continue
+        its = d["its"]
+        split = "—"
+        if r["ksp"] is not None and r["setup"] is not None and r["jac"] is not None and r["solve"] is not None:
+            # BoomerAMG's set-up is logged outside KSPSolve here (SNESSolve = KSPSolve + PCSetUp +
+            # SNESJacobianEval + SNESLineSearch to some 0.1 %); when nested, take it out of KSPSolve
+            nested = r["ksp"] + r["setup"] + r["jac"] > r["solve"]
+            kry = r["ksp"] - r["setup"] if nested else r["ksp"]
+            other = r["solve"] - kry - r["setup"] - r["jac"]
+            split = f"{d['time'] / its:.1f} ({kry / its:.1f}, {r['setup'] / its:.1f}, {r['jac'] / its:.1f}, {other / its:.1f})"
+        most = r["most"]
+        mtxt = ", ".join(str(x) for x in most[:3]) + (f"; {max(most[3:])}" if len(most) > 3 else "")
+        flag = "" if d["time"] < TARGET_S else " (above 30 min)"
+        force = f"{r['force']:.1f}" if r["force"] is not None else "—"
+        peak = f"{r['peak'] / 1e9:.2f}" if r["peak"] is not None else "—"
+        out.append(f"| {r['tag']} | `{r['opts'] or '(the file)'}` | {r['probe'] if r['probe'] else '—'} | "
+                   f"{d['time']:.0f} ({d['time'] / 60:.1f} min){flag} | {d['steps']} | {its} | {d['cuts']} | "
+                   f"{r['krylov']} ({r['krylov'] / its:.1f}) | {mtxt} | {split} | {force} | {peak} |")
+    out += ["", "The residuals' column is the rest of the Newton solve (residuals, line search, contact pairing). "
+            "Regenerate with `/usr/bin/python3 scripts/bench_friction200k.py` (some 30 to 40 minutes a variant on this machine)."]
+    return "\n".join(out) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--variant", action="append", default=[], help="TAG:OPTIONS (repeatable)")
+    ap.add_argument("--ranks", type=int, default=2)
+    ap.add_argument("--cells", default="46,113", help="NC,NR: -blank_core_cells, -blank_radial_cells")
+    ap.add_argument("--probe", type=int, default=5, help="seed-case runs before each variant (0: none)")
+    ap.add_argument("--logdir", default=None)
+    ap.add_argument("--reuse", action="store_true")
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    args = ap.parse_args()
+    variants = args.variant or ["l1:-load_grow_its 6 -pc_amgsys_relax_type 18", "file:-load_grow_its 6"]
+    parsed = []
+    for v in variants:
+        if ":" not in v or not v.split(":", 1)[0]:
+            sys.exit(f"bench_friction200k: --variant '{v}' is not TAG:OPTIONS")
+        parsed.append(tuple(v.split(":", 1)))
+    if not re.fullmatch(r"\d+,\d+", args.cells):
+        sys.exit(f"bench_friction200k: --cells '{args.cells}' is not NC,NR")
+    if args.reuse and not args.logdir:
+        sys.exit("bench_friction200k: --reuse needs --logdir")
+    logdir = args.logdir or tempfile.mkdtemp(prefix="bench200k_")
+    try:
+        if not args.reuse:
+            binary = benchutil.build_and_snapshot(ROOT, logdir, "bench_friction200k")
+            for tag, opts in parsed:
+                run(binary, tag, opts, args, logdir)
+        rows = [parse(logdir, tag) for tag, _ in parsed]
+        benchutil.write_doc_section(args.output, HEADING, section(rows))
+        print(f"bench_friction200k: wrote '{HEADING}' in {args.output}")
+    finally:
+        if not args.logdir:
+            shutil.rmtree(logdir, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
