@@ -25,7 +25,9 @@ What it does
 
 --logdir keeps the runs (DIR/TAG/: log, history.csv, contact.csv, probe; default a temporary
 directory, removed); --reuse reads DIR/TAG/ instead of running (to rewrite the section from runs
-made earlier). Standard library only.
+made earlier; the date, machine and commit come from the logs' header lines, so the section
+renders the same anywhere: tests/test_scripts.sh renders it from the trimmed logs of
+tests/data/bench200k). Standard library only.
 """
 import argparse
 import os
@@ -76,13 +78,17 @@ def run(binary, tag, opts, args, logdir):
     if args.probe > 0:
         with open(os.path.join(d, "probe"), "w") as f:
             f.write(f"{probe(binary, args.probe, d):.2f}\n")
+        shutil.rmtree(os.path.join(d, "probe_out"), ignore_errors=True)
     nc, nr = args.cells.split(",")
     cmd = ["mpiexec", "-n", str(args.ranks), binary, "-options_file", CASE, "-options_file", SOLVER,
            "-blank_core_cells", nc, "-blank_radial_cells", nr, "-output_interval", "0", "-output_dir", d,
            "-log_view", "-memory_view"] + opts.split()
     print(f"bench_friction200k: {tag}: {' '.join(cmd)}", flush=True)
     with open(os.path.join(d, "log"), "w") as f:
-        f.write(f"# start {time.strftime('%Y-%m-%d %H:%M:%S %Z')} load {os.getloadavg()[0]:.2f}\n# options {opts}\n")
+        mi = benchutil.machine_info(ROOT)
+        f.write(f"# start {time.strftime('%Y-%m-%d %H:%M %Z')} load {os.getloadavg()[0]:.2f}\n# options {opts}\n"
+                f"# machine {mi['cpu']}, {mi['cores']} cores, {mi['mem']}\n"
+                f"# commit {mi['commit']}{' (with local changes)' if mi['dirty'] else ''}\n")
         f.flush()
         r = subprocess.run(cmd, cwd=ROOT, env=benchutil.run_env(), stdout=f, stderr=subprocess.STDOUT)
         f.write(f"# end {time.strftime('%Y-%m-%d %H:%M:%S %Z')} rc {r.returncode}\n")
@@ -93,8 +99,10 @@ def parse(logdir, tag):
     with open(os.path.join(d, "log")) as f:
         text = f.read()
     row = dict(tag=tag, opts="", probe=None, done=None)
-    m = re.search(r"^# options (.*)$", text, re.M)
-    row["opts"] = m.group(1).strip() if m else ""
+    for key in ("options", "start", "machine", "commit"):
+        m = re.search(r"^# " + key + r" (.*)$", text, re.M)
+        row[key] = m.group(1).strip() if m else ""
+    row["opts"] = row["options"]
     try:
         with open(os.path.join(d, "probe")) as f:
             row["probe"] = float(f.read().split()[0])
@@ -127,7 +135,11 @@ def parse(logdir, tag):
 
 
 def section(rows):
-    out = [HEADING, "", benchutil.measured_by("bench_friction200k.py", ROOT), "",
+    # the runs' own dates, machine and commit (from their logs), so that --reuse renders the same
+    # section on any machine
+    runs = "; ".join(f"{r['tag']} started {r['start'].split(' load')[0] or '?'}, commit {r['commit'] or '?'}" for r in rows)
+    machines = sorted(set(r["machine"] or "?" for r in rows))
+    out = [HEADING, "", f"Measured by `scripts/bench_friction200k.py` on {' and '.join(machines)}: {runs}.", "",
            f"`{CASE}` with `{SOLVER}` and the variant's options, whole blank, 4 layers, friction "
            "mu 0.15, to 40 mm, no field output, one variant after the other, no other job. The probe: the "
            f"seed case without friction (`{SEED}`, 1 rank, median) just before the variant, the machine's "
@@ -156,7 +168,8 @@ def section(rows):
         out.append(f"| {r['tag']} | `{r['opts'] or '(the file)'}` | {r['probe'] if r['probe'] else '—'} | "
                    f"{d['time']:.0f} ({d['time'] / 60:.1f} min){flag} | {d['steps']} | {its} | {d['cuts']} | "
                    f"{r['krylov']} ({r['krylov'] / its:.1f}) | {mtxt} | {split} | {force} | {peak} |")
-    out += ["", "The residuals' column is the rest of the Newton solve (residuals, line search, contact pairing). "
+    out += ["", "The residuals' column is the rest of the Newton solve (residuals, line search, contact pairing); "
+            "a probe of — was not taken before the run. "
             "Regenerate with `/usr/bin/python3 scripts/bench_friction200k.py` (some 30 to 40 minutes a variant on this machine)."]
     return "\n".join(out) + "\n"
 
@@ -182,6 +195,7 @@ def main():
     if args.reuse and not args.logdir:
         sys.exit("bench_friction200k: --reuse needs --logdir")
     logdir = args.logdir or tempfile.mkdtemp(prefix="bench200k_")
+    binary = None
     try:
         if not args.reuse:
             binary = benchutil.build_and_snapshot(ROOT, logdir, "bench_friction200k")
@@ -191,6 +205,8 @@ def main():
         benchutil.write_doc_section(args.output, HEADING, section(rows))
         print(f"bench_friction200k: wrote '{HEADING}' in {args.output}")
     finally:
+        if binary:
+            shutil.rmtree(os.path.dirname(binary), ignore_errors=True)
         if not args.logdir:
             shutil.rmtree(logdir, ignore_errors=True)
 
