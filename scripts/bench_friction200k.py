@@ -96,6 +96,8 @@ def run(binary, tag, opts, args, logdir):
 
 def parse(logdir, tag):
     d = os.path.join(logdir, tag)
+    if not os.path.isfile(os.path.join(d, "log")):
+        sys.exit(f"bench_friction200k: no log of variant '{tag}' in {logdir}")
     with open(os.path.join(d, "log")) as f:
         text = f.read()
     row = dict(tag=tag, opts="", probe=None, done=None)
