@@ -20,7 +20,8 @@ What it does
      symmetric hybrid Gauss-Seidel).
   3. Reads from each log the progress lines (steps, Newton and Krylov iterations, most Krylov
      iterations per solve), the summary line, -log_view's KSPSolve, PCSetUp, SNESJacobianEval and
-     SNESFunctionEval, the peak resident size; from contact.csv the punch force at the last step.
+     SNESFunctionEval (its Solve stage), the peak resident size; from contact.csv the punch force
+     at the last step.
   4. Writes the section "## The 200 000-hexahedra friction case" of --output, keeping its others.
 
 --logdir keeps the runs (DIR/TAG/: log, history.csv, contact.csv, probe; default a temporary
@@ -52,12 +53,6 @@ STEP_RE = re.compile(r"^step\s+(\d+)\s+time\s+([\d.]+)\s+its\s+(\d+)\s+krylov\s+
 DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
 MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
 MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)")
-
-
-def event_time(text, name):
-    """-log_view's max time of an event, or None"""
-    m = re.search(r"^" + re.escape(name) + r"\s+\d+\s+[\d.]+\s+([\d.eE+-]+)", text, re.M)
-    return float(m.group(1)) if m else None
 
 
 def probe(binary, n, work):
@@ -119,7 +114,7 @@ def parse(logdir, tag):
     if m:
         row["done"] = dict(steps=int(m.group(1)), its=int(m.group(2)), cuts=int(m.group(3)), time=float(m.group(4)))
     for key, ev in (("ksp", "KSPSolve"), ("setup", "PCSetUp"), ("jac", "SNESJacobianEval"), ("res", "SNESFunctionEval"), ("solve", "SNESSolve")):
-        row[key] = event_time(text, ev)
+        row[key] = benchutil.log_event_time(text, ev, "Solve")
     m = MEM_RE.search(text)
     row["peak"] = float(m.group(2)) if m else None
     row["force"] = None

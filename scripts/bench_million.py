@@ -325,11 +325,8 @@ def log(msg):
 
 def event_time(out, name):
     """max time over the ranks of a -log_view event of the Solve stage (0 when absent)"""
-    part = out.split("--- Event Stage 3: Solve", 1)
-    if len(part) < 2:
-        return 0.0
-    m = re.search(r"^" + re.escape(name) + r"\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)", part[1], re.M)
-    return float(m.group(2)) if m else 0.0
+    t = benchutil.log_event_time(out, name, "Solve")
+    return t if t is not None else 0.0
 
 
 def tag(p):

@@ -42,6 +42,19 @@ def children_cpu():
     return ru.ru_utime + ru.ru_stime
 
 
+def log_event_time(text, name, stage=None):
+    """the max time over the ranks of a -log_view event, or None when absent; with stage (e.g.
+    "Solve"), only that log stage's table is read (the code's stages: Main Stage, Mesh, Setup,
+    Solve)"""
+    if stage is not None:
+        part = re.split(r"^--- Event Stage \d+: " + re.escape(stage) + r"\s*$", text, maxsplit=1, flags=re.M)
+        if len(part) < 2:
+            return None
+        text = part[1].split("--- Event Stage", 1)[0]
+    m = re.search(r"^" + re.escape(name) + r"\s+\d+\s+[\d.]+\s+([\d.eE+-]+)", text, re.M)
+    return float(m.group(1)) if m else None
+
+
 def write_doc_section(path, heading, body):
     """replace the section `heading` of a Markdown file (to the next '## ' heading or the end) with
     body, keeping every other section; append it when absent; written atomically"""

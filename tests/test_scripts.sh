@@ -25,8 +25,8 @@ else
 fi
 # the 200 000-hexahedra friction case (doc/performance.md, "The 200 000-hexahedra friction case"):
 # rendered again from the trimmed logs of its runs (tests/data/bench200k: each run's header lines,
-# progress lines, summary, -log_view events and last punch force), it must give the committed
-# section
+# progress lines, summary, -log_view events of the Solve stage and last punch force), it must give
+# the committed section
 B200="--variant l1: --variant l1b: --variant file: --variant file_grow5:"
 cp doc/performance.md "$OUT/performance.md"
 if $PY scripts/bench_friction200k.py --reuse --logdir tests/data/bench200k $B200 --output "$OUT/performance.md" >"$OUT/bench200k.log" 2>&1 &&
