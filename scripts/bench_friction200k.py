@@ -22,7 +22,9 @@ What it does
      iterations per solve), the summary line, -log_view's KSPSolve, PCSetUp, SNESJacobianEval and
      SNESFunctionEval (its Solve stage), the peak resident size; from contact.csv the punch force
      at the last step.
-  4. Writes the section "## The 200 000-hexahedra friction case" of --output, keeping its others.
+  4. Writes the section "## The 200 000-hexahedra friction case" of --output, keeping its others:
+     a row per variant and, for options run more than once (variants of the same OPTIONS under
+     other tags, for example l1, l1b, l1c), their median time and spread.
 
 --logdir keeps the runs (DIR/TAG/: log, history.csv, contact.csv, probe; default a temporary
 directory, removed); --reuse reads DIR/TAG/ instead of running (to rewrite the section from runs
@@ -131,6 +133,29 @@ def parse(logdir, tag):
     return row
 
 
+def repeats(rows):
+    """One line per set of options run more than once to the end: the median time and the spread,
+    the figure to compare with the target (a single run's time moves with the machine's load)."""
+    groups = {}
+    for r in rows:
+        if r["done"] is not None:
+            groups.setdefault(r["opts"], []).append(r)
+    out = []
+    for opts, rs in groups.items():
+        if len(rs) < 2:
+            continue
+        ts = sorted(r["done"]["time"] for r in rs)
+        med = statistics.median(ts)
+        probes = [r["probe"] for r in rs if r["probe"]]
+        ptxt = f", probes {min(probes):.2f} to {max(probes):.2f} s" if probes else ""
+        same = len(set((r["done"]["its"], r["krylov"]) for r in rs)) == 1
+        flag = "under" if med < TARGET_S else "above"
+        out.append(f"- `{opts or '(the file)'}`, {len(rs)} runs ({', '.join(r['tag'] for r in rs)}): median "
+                   f"{med:.0f} s ({med / 60:.1f} min, {flag} the 30 minutes), {ts[0]:.0f} to {ts[-1]:.0f} s{ptxt}; "
+                   + ("the same Newton and Krylov iterations in each." if same else "their Newton or Krylov iterations differ."))
+    return [""] + out if out else []
+
+
 def section(rows):
     # the runs' own dates, machine and commit (from their logs), so that --reuse renders the same
     # section on any machine
@@ -165,6 +190,7 @@ def section(rows):
         out.append(f"| {r['tag']} | `{r['opts'] or '(the file)'}` | {r['probe'] if r['probe'] else '—'} | "
                    f"{d['time']:.0f} ({d['time'] / 60:.1f} min){flag} | {d['steps']} | {its} | {d['cuts']} | "
                    f"{r['krylov']} ({r['krylov'] / its:.1f}) | {mtxt} | {split} | {force} | {peak} |")
+    out += repeats(rows)
     out += ["", "The residuals' column is the rest of the Newton solve (residuals, line search, contact pairing); "
             "a probe of — was not taken before the run. "
             "Regenerate with `/usr/bin/python3 scripts/bench_friction200k.py` (some 30 to 40 minutes a variant on this machine)."]
