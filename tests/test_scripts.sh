@@ -27,7 +27,7 @@ fi
 # rendered again from the trimmed logs of its runs (tests/data/bench200k: each run's header lines,
 # progress lines, summary, -log_view events of the Solve stage and last punch force), it must give
 # the committed section
-B200="--variant l1: --variant l1b: --variant file: --variant file_grow5:"
+B200="--variant l1: --variant l1b: --variant l1c: --variant l1d: --variant file: --variant file_grow5:"
 cp doc/performance.md "$OUT/performance.md"
 if $PY scripts/bench_friction200k.py --reuse --logdir tests/data/bench200k $B200 --output "$OUT/performance.md" >"$OUT/bench200k.log" 2>&1 &&
    cmp -s doc/performance.md "$OUT/performance.md"; then
