@@ -149,10 +149,16 @@ def repeats(rows):
         probes = [r["probe"] for r in rs if r["probe"]]
         ptxt = f", probes {min(probes):.2f} to {max(probes):.2f} s" if probes else ""
         same = len(set((r["done"]["its"], r["krylov"]) for r in rs)) == 1
+        forces = [r["force"] for r in rs if r["force"] is not None]
+        ftxt = ""
+        if len(forces) == len(rs):
+            spread = (max(forces) - min(forces)) / abs(max(forces, key=abs))
+            ftxt = "; the same punch force" if spread == 0 else f"; punch forces within {spread:.1e} of each other"
         flag = "under" if med < TARGET_S else "above"
         out.append(f"- `{opts or '(the file)'}`, {len(rs)} runs ({', '.join(r['tag'] for r in rs)}): median "
                    f"{med:.0f} s ({med / 60:.1f} min, {flag} the 30 minutes), {ts[0]:.0f} to {ts[-1]:.0f} s{ptxt}; "
-                   + ("the same Newton and Krylov iterations in each." if same else "their Newton or Krylov iterations differ."))
+                   + ("the same Newton and Krylov iterations in each" if same else "their Newton or Krylov iterations differ")
+                   + ftxt + ".")
     return [""] + out if out else []
 
 
