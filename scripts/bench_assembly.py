@@ -306,7 +306,7 @@ def machine_info():
 
 # ---------------------------------------------------------------------------------- application runs
 EVENT_RE = re.compile(r"^(AtritoResidual|AtritoJacobian)\s+(\d+)\s+([\d.]+)\s+([\d.eE+-]+)\s+([\d.]+)", re.M)
-MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
+MESH_RE = benchutil.MESH_RE
 MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)\s+min\s+([\d.eE+-]+)")
 STEP_RE = re.compile(r"^step\s+(\d+)\s+time\s+([\d.]+)\s+its\s+(\d+)", re.M)
 LUF_RE = re.compile(r"^(?:AtritoLUFactor|MatLUFactorNum)\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)", re.M)

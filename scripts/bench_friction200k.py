@@ -20,8 +20,8 @@ What it does
      symmetric hybrid Gauss-Seidel).
   3. Reads from each log the progress lines (steps, Newton and Krylov iterations, most Krylov
      iterations per solve), the summary line, -log_view's KSPSolve, PCSetUp, SNESJacobianEval and
-     SNESFunctionEval (its Solve stage), the peak resident size; from contact.csv the punch force
-     at the last step.
+     SNESSolve (its Solve stage; the rest of SNESSolve is the residuals' column), the peak resident
+     size; from contact.csv the punch force at the last step.
   4. Writes the section "## The 200 000-hexahedra friction case" of --output, keeping its others:
      a row per variant and, for options run more than once (variants of the same OPTIONS under
      other tags, for example l1, l1b, l1c), their median time and spread.
@@ -52,9 +52,8 @@ HEADING = "## The 200 000-hexahedra friction case"
 TARGET_S = 1800.0
 
 STEP_RE = re.compile(r"^step\s+(\d+)\s+time\s+([\d.]+)\s+its\s+(\d+)\s+krylov\s+(\d+)\s+\(most\s+(\d+)\)", re.M)
-DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
-MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
-MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)")
+DONE_RE = benchutil.DONE_RE
+MEM_RE = benchutil.MEM_RE
 
 
 def probe(binary, n, work):
@@ -107,15 +106,13 @@ def parse(logdir, tag):
             row["probe"] = float(f.read().split()[0])
     except (OSError, ValueError, IndexError):
         pass
-    m = MESH_RE.search(text)
-    row["hex"] = int(m.group(2)) if m else None
     steps = STEP_RE.findall(text)
     row["krylov"] = sum(int(s[3]) for s in steps)
     row["most"] = [int(s[4]) for s in steps]
     m = DONE_RE.search(text)
     if m:
         row["done"] = dict(steps=int(m.group(1)), its=int(m.group(2)), cuts=int(m.group(3)), time=float(m.group(4)))
-    for key, ev in (("ksp", "KSPSolve"), ("setup", "PCSetUp"), ("jac", "SNESJacobianEval"), ("res", "SNESFunctionEval"), ("solve", "SNESSolve")):
+    for key, ev in (("ksp", "KSPSolve"), ("setup", "PCSetUp"), ("jac", "SNESJacobianEval"), ("solve", "SNESSolve")):
         row[key] = benchutil.log_event_time(text, ev, "Solve")
     m = MEM_RE.search(text)
     row["peak"] = float(m.group(2)) if m else None
@@ -127,7 +124,6 @@ def parse(logdir, tag):
         last = [l.split(",") for l in lines[1:] if l.split(",")[head.index("tool")] == "punch"]
         if last:
             row["force"] = float(last[-1][head.index("force")])
-            row["travel"] = float(last[-1][head.index("travel")])
     except (OSError, ValueError, IndexError):
         pass
     return row
@@ -152,7 +148,7 @@ def repeats(rows):
         forces = [r["force"] for r in rs if r["force"] is not None]
         ftxt = ""
         if len(forces) == len(rs):
-            spread = (max(forces) - min(forces)) / abs(max(forces, key=abs))
+            spread = (max(forces) - min(forces)) / max(abs(max(forces, key=abs)), 1e-300)
             ftxt = "; the same punch force" if spread == 0 else f"; punch forces within {spread:.1e} of each other"
         flag = "under" if med < TARGET_S else "above"
         out.append(f"- `{opts or '(the file)'}`, {len(rs)} runs ({', '.join(r['tag'] for r in rs)}): median "

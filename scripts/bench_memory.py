@@ -40,9 +40,9 @@ POINTER = ("The iterative solver for large sheets (`cases/solver_amg_sheet.opts`
            "coarsening on the first level, the Jacobian made in hypre's format without its auxiliary assembly structure, no "
            "rigid-body modes) on the whole blank of `cases/hemisphere_friction_disk.opts` is measured by "
            "`scripts/bench_million.py`, section One million hexahedra, with where the memory goes.")
-MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)")
-MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
-DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
+MEM_RE = benchutil.MEM_RE
+MESH_RE = benchutil.MESH_RE
+DONE_RE = benchutil.DONE_RE
 KSP_RE = re.compile(r"^KSPSolve\s+(\d+)", re.M)
 KSPIT_RE = re.compile(r"^MatMult\s+(\d+)", re.M)
 

@@ -53,9 +53,9 @@ MEMORY_ONLY = ["-load_predictor", "none", "-snes_max_it", "1", "-load_max_cuts",
 TARGET_GIB = 0.8   # peak resident size per 100 000 hexahedra
 TARGET_KRYLOV = 50  # Krylov iterations per Newton iteration
 
-MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)")
-MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
-DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
+MEM_RE = benchutil.MEM_RE
+MESH_RE = benchutil.MESH_RE
+DONE_RE = benchutil.DONE_RE
 STEP_RE = re.compile(r"^step\s+(\d+)\s+time\s+([\d.]+)\s+its\s+(\d+)\s+krylov\s+(\d+)\s+\(most\s+(\d+)\)\s+\|R\|\s+(\S+)\s+elapsed\s+([\d.]+) s", re.M)
 CUT_RE = re.compile(r"^step \d+ at load .*retrying.*$", re.M)
 PHASE_RE = re.compile(r"^memory: after (.*?): PetscMalloc\(\)ed [\d.]+ MiB, resident ([\d.]+) MiB(?:; Jacobian (\d+) nonzeros)?", re.M)

@@ -38,8 +38,8 @@ RUN_ARGS = ["-tool_punch_motion", "0,0,8", "-load_steps", "4", "-load_dt_max", "
 
 EV_RE = {e: re.compile(r"^" + e + r"\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)", re.M) for e in ("AtritoPairing", "AtritoContact", "SNESSolve")}
 SLAVE_RE = re.compile(r"^contact: (\d+) slave nodes", re.M)
-MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
-DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
+MESH_RE = benchutil.MESH_RE
+DONE_RE = benchutil.DONE_RE
 
 
 def log(msg):

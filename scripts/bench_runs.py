@@ -42,8 +42,8 @@ HEADING = "## Benchmark run times"
 SEED = ["hemisphere_frictionless", "hemisphere_friction"]
 XFINE = "hemisphere_friction_xfine"
 
-DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
-MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
+DONE_RE = benchutil.DONE_RE
+MESH_RE = benchutil.MESH_RE
 EV_RE = {e: re.compile(r"^" + e + r"\s+(\d+)\s+[\d.]+\s+([\d.eE+-]+)", re.M)
          for e in ("AtritoResidual", "AtritoJacobian", "AtritoContact", "MatLUFactorNum", "AtritoLUFactor", "SNESSolve")}
 LU = "LU factorisation"  # MatLUFactorNum (-lu_ordering mumps) or AtritoLUFactor (-lu_ordering nd)

@@ -42,6 +42,13 @@ def children_cpu():
     return ru.ru_utime + ru.ru_stime
 
 
+# the mesh line (vertices, hexahedra), the run's summary line (steps, Newton iterations, cuts,
+# seconds) and -memory_view's peak (total over the ranks, the largest rank), as the code prints them
+MESH_RE = re.compile(r"^mesh:\s+(\d+) vertices,\s+(\d+) hexahedra", re.M)
+DONE_RE = re.compile(r"^done: (\d+) steps, (\d+) Newton iterations, (\d+) cuts, ([\d.]+) s", re.M)
+MEM_RE = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+([\d.eE+-]+)\s+max\s+([\d.eE+-]+)")
+
+
 def log_event_time(text, name, stage=None):
     """the max time over the ranks of a -log_view event, or None when absent; with stage (e.g.
     "Solve"), only that log stage's table is read (the code's stages: Main Stage, Mesh, Setup,
