@@ -2,7 +2,8 @@
 # Tools driven by force (-tool_<name>_force_x|y|z, -tool_<name>_force_amplitude) and per-tool
 # contact settings (-tool_<name>_contact_set, _penalty_normal, _penalty_tangential, _friction),
 # on cases/forcetool_holder.opts: a sheet between a fixed die and a blank holder that presses with
-# a force while the sheet is pulled sideways (stick, then slip, under both tools).
+# a force while the sheet is pulled sideways (stick, then slip, under both tools). (Bad force
+# and per-tool options are in tests/bad_input.txt.)
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -110,22 +111,3 @@ print(("ok - " if good else "not ok - ") + f"cup close stage (np={sys.argv[2]}):
 PYEOF
 done
 [ -f "$OUT/cup_close1/contact.csv" ] && [ -f "$OUT/cup_close2/contact.csv" ] && $PY tests/compare_csv.py "$OUT/cup_close1/contact.csv" "$OUT/cup_close2/contact.csv" --rtol 1e-8 --skip 'residual_*' --int-tol newton_its=1 --label "cup close stage np=1 against np=2, contact.csv, 1e-8"
-
-# 7. bad input: one-line errors naming the option
-bad() { # bad EXPECT NP ARGS...
-  local expect=$1 np=$2; shift 2
-  local err="$OUT/bad$np.$RANDOM.err"
-  timeout 120 $MPI "$np" $A "$@" -output_dir "$OUT/bad" </dev/null >/dev/null 2>"$err"; local rc=$?
-  local n; n=$(grep -c '^atrito: error' "$err")
-  if [ $rc -ne 0 ] && [ $rc -lt 124 ] && [ "$n" -eq 1 ] && grep -qF -- "$expect" "$err"; then ok "bad input (np=$np): $(grep '^atrito: error' "$err" | cut -c1-150)"
-  else not_ok "bad input (np=$np): expected '$expect', exit $rc, $n error lines:"; head -n 5 "$err" | indent; fi
-}
-bad "-tool_holder_force_amplitude" 1 $CASE -tool_holder_force_amplitude 0,0,0.5,nan
-bad "-tool_holder_force_amplitude" 2 $CASE -tool_holder_force_amplitude 0,0,0.5
-bad "-tool_holder_force_z: the tool's -tool_holder_motion or -tool_holder_path moves it along z too" 1 $CASE -tool_holder_motion 0,0,-0.01
-bad "-tool_holder_force_z: the tool's -tool_holder_motion or -tool_holder_path moves it along z too" 2 $CASE -tool_holder_path 0,0,0,0,1,0,0,-0.01
-bad "-tool_holder_force_z nan. must be a finite number" 1 $CASE -tool_holder_force_z nan
-bad "-tool_die_contact_set: the mesh has no set named 'nowhere'" 2 $CASE -tool_die_contact_set nowhere
-bad "-tool_holder_friction -1. must be >= 0" 1 $CASE -tool_holder_friction -1
-bad "-tool_die_gap_smoothing -0.01 must be >= 0" 2 $CASE -tool_die_gap_smoothing -0.01
-bad "-tool_holder_penalty_normal 'soft' is neither a number nor auto" 1 $CASE -tool_holder_penalty_normal soft

@@ -8,8 +8,8 @@
 # (-stage_<s>_release) follows the linear release of its force, and a restart in the release
 # reproduces the run; so does a release by nodal forces (-stage_<s>_release_mode nodes), which
 # ends where the force-driven release ends; the kink case
-# cases/kink_retract.opts needs fewer cuts and iterations with -load_kinks than without; bad
-# stage and curve options are one-line errors naming the option.
+# cases/kink_retract.opts needs fewer cuts and iterations with -load_kinks than without. (Bad
+# stage and curve options are in tests/bad_input.txt, run in parallel by tests/test_bad_input.sh.)
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -323,30 +323,3 @@ good = len(rel) >= 4 and err < 1e-12 and ddz == 0
 print(("ok - " if good else "not ok - ") + f"force-driven holder released by its nodal forces: fz follows -1000 (2 - t) to 1e-12 (largest error {err:.2g} of it), its dz held at {dz0:.6g} (largest change {ddz:.2g})")
 PYEOF
 for f in history.csv contact.csv; do cmp8 "$OUT/fhnod_np1/$f" "$OUT/fhnod_np2/$f" "force-driven holder released by its nodal forces np=1 against np=2, $f, 1e-8"; done
-
-# 8. bad input: one line naming the option
-bad() { # bad EXPECTED NP ARGS...
-  local expect=$1 np=$2; shift 2
-  atrito_rc $np bad "$@"
-  local e; e=$(grep '^atrito: error' "$OUT/bad.log")
-  if [ "$RC" -ne 0 ] && [ "$RC" -lt 124 ] && [ "$(echo "$e" | grep -c .)" -eq 1 ] && echo "$e" | grep -qF -- "$expect" && [ ! -e "$OUT/bad/history.csv" ]; then ok "bad input (np=$np): $e"
-  else not_ok "bad input (np=$np): expected '$expect', exit $RC: $(head -n 3 "$OUT/bad.log")"; fi
-  rm -rf "$OUT/bad"
-}
-bad "-stage_draw_tools: unknown tool 'die'" 1 $CASE -stage_draw_tools punch,die
-bad "-stage_springback_bcs: unknown condition 'base'" 2 $CASE -stage_springback_bcs left,base
-bad "-stage_lift_duration 0. must be > 0" 1 $CASE -stage_lift_duration 0
-bad "-stage_lift_duration -1. must be > 0" 2 $CASE -stage_lift_duration -1
-bad "-stage_press_steps 0 must be >= 1" 1 $CASE -stage_press_steps 0
-bad "-stage_names: name 'draw' given twice" 1 $CASE -stage_names press,draw,draw
-bad "-bc_right_amplitude" 1 $CASE -bc_right_amplitude 0,0,1,nan
-bad "-bc_right_amplitude" 2 $CASE -bc_right_amplitude 0,0,1,nan
-bad "-tool_ball_amplitude: point 1 (1., nan.) is not finite" 2 -options_file cases/block_sphere.opts -tool_ball_amplitude 0,0,1,nan
-bad "-tool_ball_path and -tool_ball_amplitude are exclusive" 1 -options_file cases/block_sphere.opts -tool_ball_amplitude 0,0,1,1
-bad "-stage_release_release: unknown tool 'die'" 1 $REL -stage_release_release die
-bad "-stage_springback_release: tool 'punch' is not present in the stage" 2 $REL -stage_springback_release punch
-bad "Unknown option both for -stage_release_release_mode" 2 $REL -stage_release_release_mode both
-bad "Unknown option secant for -stage_lift_predictor" 1 $CASE -stage_lift_predictor secant
-bad "-newton_floor_tol 0.1 must lie in [0, 1e-3)" 1 $CASE -newton_floor_tol 0.1
-bad "-newton_floor_force_tol 0.5 must lie in (0, 1e-2)" 1 $CASE -newton_floor_force_tol 0.5
-bad "-stage_hold_tools: tool holder is removed at time 1. while a force of -1000. along z still drives it" 1 -options_file cases/forcetool_holder.opts -stage_names press,hold -stage_hold_tools die

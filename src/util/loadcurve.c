@@ -135,8 +135,11 @@ PetscErrorCode LoadCurveParse(MPI_Comm comm, const char opt[], const char str[],
       t[i] = a[2 * i];
       v[i] = a[2 * i + 1];
     }
-    PetscCall(LoadCurveCreate(comm, opt, n, t, v, c));
-    PetscCall(PetscFree2(t, v));
+    { /* the copies are freed whether or not the curve is accepted */
+      PetscErrorCode ierr = LoadCurveCreate(comm, opt, n, t, v, c);
+      PetscCall(PetscFree2(t, v));
+      PetscCall(ierr);
+    }
     PetscFunctionReturn(0);
   }
   ParseNumbers(str, a, 2, &n, &bad);
