@@ -10,6 +10,10 @@
 #   compare A B DIGITS LABEL      two CSV histories to DIGITS digits (tests/compare_history.py)
 #   pycheck NAME ARGS...          tests/checks/NAME.py (prints its own ok / not ok line)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# when a rank exits non-zero (every bad-input run), mpiexec ends the job's other processes with
+# SIGTERM and, 1 s later, SIGKILL, and waits that second even when none is left: 1 to 2 s a run.
+# The tests kill at once: an error's exit status and its one line are the same either way.
+export OMPI_MCA_odls_base_sigkill_timeout=${OMPI_MCA_odls_base_sigkill_timeout:-0}
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 PY=${PYTHON:-/usr/bin/python3}
 TEST_OUT=${TEST_OUT:-build/test-out}

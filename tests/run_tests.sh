@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 # the tests build with make themselves (tests/test_memory.sh, test_valgrind.sh): each such make
 # is a make of its own, on all cores, not a sub-make of the `make check` that may have started this
 unset MAKEFLAGS MFLAGS MAKELEVEL
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_odls_base_sigkill_timeout=${OMPI_MCA_odls_base_sigkill_timeout:-0}
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 export PYTHON=${PYTHON:-/usr/bin/python3}
 export TEST_OUT=${TEST_OUT:-build/test-out}
