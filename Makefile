@@ -1,5 +1,5 @@
 # atrito: parallel finite-strain elasto-plastic contact code on PETSc.
-#   make          build bin/atrito and the unit-test programs
+#   make          build bin/atrito and the unit-test programs (on all cores unless -j is given)
 #   make run      install what is missing, build, run the main job
 #   make check    install what is missing, build, run the test suite
 #   make bench    assembly throughput benchmark (writes doc/performance.md)
