@@ -9,8 +9,9 @@
 # before scripts/install-deps.sh (the order-only prerequisite $(DEPS_STAMP)) has installed
 # anything. Whatever needs PETSc, pkg-config or python3 is a deferred (=) variable, expanded when a
 # recipe runs, after the install (tests/test_build.sh checks this).
-# every build runs on all cores unless -j is given (nproc is coreutils', not an installed package's)
-ifeq ($(filter -j%,$(MAKEFLAGS)),)
+# every build runs on all cores unless -j is given (nproc is coreutils', not an installed package's),
+# or clean is asked for: `make clean all` must clean first, not beside the build
+ifeq ($(filter -j%,$(MAKEFLAGS))$(filter clean,$(MAKECMDGOALS)),)
 MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 1)
 endif
 CC       := mpicc
