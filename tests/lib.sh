@@ -7,6 +7,8 @@
 #                                 $OUT/NAME.log; prints "not ok" and returns 1 if the run fails
 #   atrito_rc NP NAME ARGS...     the same for a run expected to fail: no report, exit status in RC
 #   ok MSG / not_ok MSG           a check's line;  cmd | indent  for details under it
+#   alone NP DIR ARGS...          a run expected to fail, again, where a rank left waiting in a
+#                                 collective hangs (exit 124) instead of being killed
 #   compare A B DIGITS LABEL      two CSV histories to DIGITS digits (tests/compare_history.py)
 #   pycheck NAME ARGS...          tests/checks/NAME.py (prints its own ok / not ok line)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -43,6 +45,16 @@ atrito_rc() { # atrito_rc NP NAME ARGS...: RC is the exit status
   local np=$1 name=$2; shift 2
   timeout "$ATRITO_TIMEOUT" $MPI "$np" $A "$@" -output_dir "$OUT/$name" >"$OUT/$name.log" 2>&1 </dev/null
   RC=$?
+}
+
+# alone NP DIR ARGS...: the run again with mpiexec told not to end the job when a rank exits
+# non-zero. By default mpiexec kills the other ranks then, so an error raised on one rank only
+# that leaves the others waiting in a collective still ends the run; here such a run hangs until
+# the timeout (exit 124), which the caller reports. (mpiexec's own exit status is 0 this way: the
+# status is checked in the default run.)
+alone() {
+  local np=$1 dir=$2; shift 2
+  OMPI_MCA_orte_abort_on_non_zero_status=0 timeout "${ALONE_TIMEOUT:-30}" $MPI "$np" $A "$@" -output_dir "$dir" </dev/null >/dev/null 2>&1
 }
 
 compare() { $PY tests/compare_history.py "$@"; }

@@ -14,8 +14,12 @@ check_case() { # check_case N NP EXPECT ARGS: writes the report line of case N t
   # shellcheck disable=SC2086
   timeout $ATRITO_TIMEOUT $MPI "$np" $A $args -output_dir "$dir" </dev/null >"$OUT/case$n.out" 2>"$err"; RC=$?
   nerr=$(grep -c '^atrito: error' "$err")
-  if [ "$RC" -ne 0 ] && [ "$RC" -lt 124 ] && [ "$nerr" -eq 1 ] && grep -qF -- "$expect" "$err" && [ ! -e "$dir/history.csv" ]; then
-    ok "bad input $n (np=$np, exit $RC): $(grep '^atrito: error' "$err" | cut -c1-150)" >"$OUT/case$n.res"
+  # on 2 ranks the error must end every rank by itself (no rank left in a collective)
+  local arc=0; [ "$np" -gt 1 ] && { alone "$np" "$dir.alone" $args; arc=$?; }
+  if [ "$RC" -ne 0 ] && [ "$RC" -lt 124 ] && [ "$nerr" -eq 1 ] && grep -qF -- "$expect" "$err" && [ ! -e "$dir/history.csv" ] && [ "$arc" -ne 124 ]; then
+    ok "bad input $n (np=$np, exit $RC$([ "$np" -gt 1 ] && echo ', every rank ends')): $(grep '^atrito: error' "$err" | cut -c1-150)" >"$OUT/case$n.res"
+  elif [ "$arc" -eq 124 ]; then
+    not_ok "bad input $n (np=$np): a rank was left waiting (the run without mpiexec's kill hung ${ALONE_TIMEOUT:-30} s): '$expect'" >"$OUT/case$n.res"
   else
     { not_ok "bad input $n (np=$np): expected '$expect', exit $RC, $nerr error lines:"; head -n 5 "$err" | indent; } >"$OUT/case$n.res"
   fi
