@@ -9,6 +9,7 @@
 #   ok MSG / not_ok MSG           a check's line;  cmd | indent  for details under it
 #   alone NP DIR ARGS...          a run expected to fail, again, where a rank left waiting in a
 #                                 collective hangs (exit 124) instead of being killed
+#   alone_ok NP NAME LABEL ARGS...  the same as a check line of its own (output in $OUT/NAME.alone)
 #   compare A B DIGITS LABEL      two CSV histories to DIGITS digits (tests/compare_history.py)
 #   pycheck NAME ARGS...          tests/checks/NAME.py (prints its own ok / not ok line)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -55,6 +56,14 @@ atrito_rc() { # atrito_rc NP NAME ARGS...: RC is the exit status
 alone() {
   local np=$1 dir=$2; shift 2
   OMPI_MCA_orte_abort_on_non_zero_status=0 timeout "${ALONE_TIMEOUT:-30}" $MPI "$np" $A "$@" -output_dir "$dir" </dev/null >/dev/null 2>&1
+}
+
+# alone_ok NP NAME LABEL ARGS...: alone, reported as a check of its own
+alone_ok() {
+  local np=$1 name=$2 label=$3 rc; shift 3
+  alone "$np" "$OUT/$name.alone" "$@"; rc=$?
+  [ $rc -ne 124 ] && ok "$label: every rank ends by itself (np=$np, without mpiexec's kill)" ||
+    not_ok "$label: a rank was left waiting (np=$np: the run without mpiexec's kill hung ${ALONE_TIMEOUT:-30} s)"
 }
 
 compare() { $PY tests/compare_history.py "$@"; }

@@ -102,3 +102,4 @@ atrito 1 chatter -options_file cases/block_sphere.opts -output_interval 0 -snes_
 atrito_rc 2 chatter2 -options_file cases/block_sphere.opts -output_interval 0 -snes_rtol 0.5 -load_max_cuts 0
 msg=$(grep -o "atrito: error: step .*contact chattering.*node id [0-9]*.*" "$OUT/chatter2.log" | head -1)
 [ $RC -ne 0 ] && [ -n "$msg" ] && ok "chattering with no cut allowed stops the run (np=2): ${msg:0:120}" || not_ok "chattering final message (exit $RC)"
+alone_ok 2 chatter2 "chattering with no cut allowed" -options_file cases/block_sphere.opts -output_interval 0 -snes_rtol 0.5 -load_max_cuts 0

@@ -51,3 +51,4 @@ $MPI 2 $A $CASE -output_dir "$OUT/badmat" -material_type hill48 -restart "$OUT/n
 rc=$?
 [ "$rc" -ne 0 ] && [ "$(grep -c '^atrito: error' "$OUT/badmat.log")" -eq 1 ] && grep -q "atrito: error: -restart .*the checkpoint's material is j2, this case's -material_type hill48" "$OUT/badmat.log" &&
   ok "a checkpoint of another material type is refused (np=2, exit $rc): $(grep -o 'atrito: error.*' "$OUT/badmat.log" | cut -c1-140)" || not_ok "a checkpoint of another material type was not refused (exit $rc)"
+alone_ok 2 badmat "a checkpoint of another material type" $CASE -material_type hill48 -restart "$OUT/np/checkpoint.h5"

@@ -79,6 +79,7 @@ atrito 1 cut_retmap -options_file cases/tension_bar.opts -load_steps 1 -material
   not_ok "return-map failure was not retried"
 atrito_rc 2 cut_fail -options_file cases/tension_bar.opts -load_steps 2 -bc_pull_values -10.5 -load_max_cuts 3 -output_interval 1
 pycheck stopped_run "$OUT/cut_fail" "$RC" "impossible compression stops cleanly (np=2)"
+alone_ok 2 cut_fail "impossible compression" -options_file cases/tension_bar.opts -load_steps 2 -bc_pull_values -10.5 -load_max_cuts 3 -output_interval 1
 
 # 7. a NaN in the residual (fault injection): retried with a smaller increment; with no cut
 #    allowed, the run stops naming the cause and the load
@@ -89,6 +90,7 @@ atrito 1 nan -options_file cases/tension_bar.opts -fault_nan_residual_at 0.5 -ou
 atrito_rc 2 nanfail -options_file cases/tension_bar.opts -fault_nan_residual_at 0.5 -load_max_cuts 0 -output_interval 0
 msg=$(grep -o "atrito: error: step [0-9]* failed at load [0-9.]* .*NaN or Inf in the residual.*" "$OUT/nanfail.log" | head -1)
 [ $RC -ne 0 ] && [ $RC -lt 124 ] && [ -n "$msg" ] && ok "a NaN with no cut allowed stops the run (np=2, exit $RC): ${msg:0:110}" || not_ok "NaN final message (exit $RC)"
+alone_ok 2 nanfail "a NaN with no cut allowed" -options_file cases/tension_bar.opts -fault_nan_residual_at 0.5 -load_max_cuts 0 -output_interval 0
 
 # 8. the iterative solver path: GMRES with algebraic multigrid and the rigid-body near-null
 #    space, at 1 and 2 ranks, against the direct solver's history

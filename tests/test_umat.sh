@@ -115,6 +115,7 @@ atrito_rc 2 nan_np2 $SMALL -material_type umat -material_umat bin/umat_ctest.so 
 [ "$RC" -ne 0 ] && [ "$RC" -lt 124 ] && [ "$(grep -c '^atrito: error' "$OUT/nan_np2.log")" -eq 1 ] && grep -qF -- "$NANMSG" "$OUT/nan_np2.log" &&
   ok "nan at np=2: one error line naming element 2, integration point 7" ||
   { not_ok "nan at np=2 (exit $RC)"; tail -n 3 "$OUT/nan_np2.log" | indent; }
+alone_ok 2 nan_np2 "a NaN stress in an element of the second rank" $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_nan_ -material_umat_props 69004,0.3,2,7 -load_max_cuts 2
 # PNEWDT < 1: the material's MAT_ERR_CUTBACK fails the step at once and it is retried smaller
 atrito 1 cut $SMALL -material_type umat -material_umat bin/umat_ctest.so -material_umat_symbol umat_cut_ -material_umat_props 69004,0.3 &&
   { d=$(grep -m1 '^done:' "$OUT/cut.log")
