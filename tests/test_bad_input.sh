@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every line of tests/bad_input.txt: a one-line error naming the cause, a non-zero exit
-# that is not a signal (no crash, no core dump), nothing written to the output directory.
+# that is not a signal (no crash, no core dump), nothing written to the output directory; a
+# 2-rank case runs again without mpiexec's kill (alone, tests/lib.sh) and must end by itself.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -15,6 +16,7 @@ check_case() { # check_case N NP EXPECT ARGS: writes the report line of case N t
   timeout $ATRITO_TIMEOUT $MPI "$np" $A $args -output_dir "$dir" </dev/null >"$OUT/case$n.out" 2>"$err"; RC=$?
   nerr=$(grep -c '^atrito: error' "$err")
   # on 2 ranks the error must end every rank by itself (no rank left in a collective)
+  # shellcheck disable=SC2086
   local arc=0; [ "$np" -gt 1 ] && { alone "$np" "$dir.alone" $args; arc=$?; }
   if [ "$RC" -ne 0 ] && [ "$RC" -lt 124 ] && [ "$nerr" -eq 1 ] && grep -qF -- "$expect" "$err" && [ ! -e "$dir/history.csv" ] && [ "$arc" -ne 124 ]; then
     ok "bad input $n (np=$np, exit $RC$([ "$np" -gt 1 ] && echo ', every rank ends')): $(grep '^atrito: error' "$err" | cut -c1-150)" >"$OUT/case$n.res"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Memory checks: every unit-test program under AddressSanitizer and UndefinedBehaviorSanitizer (invalid
-# accesses, undefined behaviour, and leaks for the programs without MPI), and PETSc's
+# Memory checks: every unit-test program under AddressSanitizer and UndefinedBehaviorSanitizer
+# (invalid accesses, undefined behaviour, and leaks for the programs without MPI), and PETSc's
 # -malloc_debug -malloc_dump (every PETSc allocation freed) for the programs with MPI and for
 # integration runs of the solver (plasticity, contact, checkpoint and restart, 1 and 2 ranks).
 set -u
