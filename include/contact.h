@@ -138,12 +138,14 @@ PetscErrorCode ContactRecordActive(Contact c);
    force (before or after: above 1e-3 of the largest normal force of the committed state and the
    last two iterates); count over all ranks and the smallest node id */
 PetscErrorCode ContactChatter(Contact c, PetscInt *count, PetscInt *node);
-/* keep 1 (nodes on frictionless tools) or 2 (every tool): every such node pressed in the
-   committed state (in contact with a normal force) and paired with the same tool now is closed
-   whatever its gap, below the tool as always, off it with the normal force continued linearly,
-   t_N = lN - K_N g < 0 (bilateral), until it is ended (0: off; the stepper ends it before the first line search).
-   With 2, a held node on a frictional tool keeps the friction of its committed force (the cone
-   mu t_N,committed, whatever the gap) and is held tangentially by a spring K_T (I - n n^T)
+/* keep 1 (nodes on frictionless tools), 2 (and on the frictional tools that the step moves by a
+   prescribed displacement) or 3 (and on the frictional tools at rest in the step; never a
+   force-driven tool's): every such node pressed in the committed state (in contact with a normal
+   force) and paired with the same tool now is closed whatever its gap, below the tool as always,
+   off it with the normal force continued linearly, t_N = lN - K_N g < 0 (bilateral), until it is
+   ended (0: off; the stepper ends it before the first line search).
+   With 2 and 3, a held node on a frictional tool keeps the friction of its committed force (the
+   cone mu t_N,committed, whatever the gap) and is held tangentially by a spring K_T (I - n n^T)
    anchored at its position when the frame seeds were last set (the predictor), and a node not
    pressed on its tool in the committed state (entering contact) has no friction until the keep
    ends. */

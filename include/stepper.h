@@ -43,7 +43,9 @@ typedef struct {
                               backtracking search is rejected, not the end of the solve       */
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */
   PetscInt  keep_contact;  /* the first Newton iteration holds the committed pressed nodes closed:
-                              0 no, 1 on frictionless tools, 2 on every tool (-newton_keep_contact) */
+                              0 no, 1 on frictionless tools, 2 and on frictional tools moved by
+                              a prescribed displacement, 3 and on those at rest too
+                              (-newton_keep_contact none, frictionless, moving, all) */
   PetscBool keep_contact_set; /* given by the option (else: 1, and 2 with -contact_augmented) */
   PetscReal r_true0;       /* |R| at the start of the solve with the true contact law (< 0: none) */
   PetscReal ksp_target;    /* -newton_ksp_target: a Newton iteration's linear solve stops at this

@@ -249,6 +249,9 @@ int main(int argc, char **argv)
       Displace(&s.m, u, g, g);
       PetscCall(KeptLifted(&s, 2, u, f, nloc, mu > 0 ? PETSC_FALSE : PETSC_TRUE, KN, g, &nfail, &err));
       CHECK_ALL(nfail == 0 && err < 1e-12, "mu %g, keep 2 on a tool at rest: the lifted nodes %s (relative error %.1e)", (double)mu, mu > 0 ? "are open" : "are held", err);
+      /* keep 3 (all): the tool at rest holds them too, frictional or not */
+      PetscCall(KeptLifted(&s, 3, u, f, nloc, PETSC_TRUE, KN, g, &nfail, &err));
+      CHECK_ALL(nfail == 0 && err < 1e-12, "mu %g, keep 3 on a tool at rest: the lifted nodes are held (relative error %.1e)", (double)mu, err);
       PetscCall(MatDestroy(&Jd));
       PetscCall(PetscFree(cv));
     }

@@ -57,6 +57,7 @@ typedef struct {
   PetscReal  rel_t[2];  /* goes linearly from rel_f, the force at rel_t[0], to 0 at rel_t[1]      */
   PetscReal  rel_f[3];
   PetscBool  moving;    /* displacement-driven and moved by the step being solved (ContactSeed)  */
+  PetscBool  forced;    /* force-driven in some component (ContactSeed)                         */
   double     step_dx[3];/* that motion: its translation over the step (ContactSeed)              */
 } ToolContact;
 
@@ -110,7 +111,7 @@ struct _p_Contact {
   PetscReal    *seed;          /* ns*3 frame seed of the current Newton iteration (eqs 28-30) */
   PetscReal    *seedn;         /* ns*3 the normal whose tangent plane holds the seed (0: none)  */
   PetscReal    *yseed;         /* ns*3 the node's position when the seed was last set: the anchor
-                                  of a held node's tangential spring (ContactKeepCommitted 2)    */
+                                  of a held node's tangential spring (ContactKeepCommitted 2, 3) */
   PetscBool    *has_seed;
   PetscReal     lambda_c;      /* load parameter of the committed state                      */
   PetscReal     search;        /* pairing distance                                           */
@@ -982,23 +983,28 @@ static void CommittedNormal(const ContactState *cc, double n[3])
 }
 
 /* node i, paired with tool now (its law: mu), is held closed (ContactKeepCommitted): it was
-   pressed on that tool in the committed state, and the tool is frictionless or (keep all) moves
-   by a prescribed displacement in the step being solved (ToolContact.moving), not away from the
-   node (below). The keep is for the
-   nodes that the predictor's motion of their tool would open or push in: a tool at rest is not
-   moved by the predictor, and a force-driven tool's position is an unknown of the solve, set by
-   the nodes' forces on it, which a tangential spring anchored at the predictor would fight.
-   Holding every frictional tool's nodes failed the NUMISHEET'93 mild-steel cup at the start of
-   the draw (its force-driven holder), holding all but the force-driven ones the aluminium cup
-   (doc/contact.md, Augmented Lagrangian) */
+   pressed on that tool in the committed state, and the tool is frictionless, or (keep moving)
+   moves by a prescribed displacement in the step being solved (ToolContact.moving), not away
+   from the node (below), or (keep all) is that or at rest in the step. The keep is for the nodes
+   that the predictor would open or push in: a moving tool's by the tool's motion, a resting
+   tool's by the extrapolation of the body's motion, which carries a node sliding over a curved
+   tool along a chord, off it or into it (the hemisphere with friction, 2.9 mm steps: up to 15 of
+   the 30 nodes pressed on the die's fillet, radius 6.35 mm, open at the predictor by up to
+   0.034 mm, and that step took 14 Newton iterations against 6 with them held, doc/performance.md).
+   A force-driven tool's position is an unknown of the solve, set by the nodes' forces on it,
+   which a tangential spring anchored at the predictor would fight: never held. Holding every
+   frictional tool's nodes failed the NUMISHEET'93 mild-steel cup at the start of the draw (its
+   force-driven holder), holding all but the force-driven ones (keep all) the aluminium cup in an
+   augmented run, whose default is therefore moving (doc/contact.md, Augmented Lagrangian) */
 static inline PetscBool Held(const struct _p_Contact *contact, PetscInt i, PetscInt tool, double mu)
 {
   const ContactState *cc = &contact->cst_c[i];
   if (!contact->keep || !PressedOn(cc, tool)) return PETSC_FALSE;
   if (!(mu > 0)) return PETSC_TRUE;
-  if (contact->keep < 2 || !contact->tc[tool].moving) return PETSC_FALSE;
+  if (contact->keep < 2 || contact->tc[tool].forced) return PETSC_FALSE;
+  if (!contact->tc[tool].moving) return contact->keep == 3 ? PETSC_TRUE : PETSC_FALSE;
   {
-    /* keep all: not a node its tool moves away from (the step's translation against the
+    /* keep moving or all: not a node its tool moves away from (the step's translation against the
        committed normal, which points from the tool into the body, below -1/2 of its length; a
        tool sliding past the node, at right angles to the normal, is still held): a retracting
        tool lets its nodes go, and the keep's pull would drag the body along with it
@@ -1022,9 +1028,11 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
     for (PetscInt t = 0; t < contact->ntools; t++) {
       ToolContact *tc = &contact->tc[t];
       double       sc[3], sn[3];
-      tc->moving = PETSC_TRUE;
+      tc->forced = PETSC_FALSE;
       for (int k = 0; k < 3; k++)
-        if (tc->drive[k] == TOOL_DRIVE_FORCE) tc->moving = PETSC_FALSE;
+        if (tc->drive[k] == TOOL_DRIVE_FORCE) tc->forced = PETSC_TRUE;
+      tc->moving = tc->forced ? PETSC_FALSE : PETSC_TRUE;
+      for (int k = 0; k < 3; k++) tc->step_dx[k] = 0;
       if (!tc->moving) continue;
       CommittedShift(contact, t, sc);
       CurShift(contact, t, lambda, sn);
@@ -1133,13 +1141,13 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
   st->xi    = pr.xi;
   st->eta   = pr.eta;
   law       = NodeLaw(contact, i, tool);
-  /* the first Newton iteration with the keep of every tool (ContactKeepCommitted 2): a node not
+  /* the first Newton iteration with the keep of frictional tools (ContactKeepCommitted 2, 3): a node not
      pressed on this tool in the committed state has no friction there. Such a node enters
      contact at the predictor, where the extrapolation leaves it 0.03-0.12 mm inside the tool: a
      normal force K_N g some 100 times the converged one, and so a friction cone that made it
      stick (K_T held it to the tool) where the converged state has it slip; it flipped to slip at
      the second iteration (hemisphere with friction: 8-11 such nodes a step, doc/performance.md). */
-  if (contact->keep == 2 && !PressedOn(cc, tool)) law.mu = 0;
+  if (contact->keep >= 2 && !PressedOn(cc, tool)) law.mu = 0;
   /* the multipliers of the current solve (the committed state's at the start of a step) */
   if (contact->lam_tool[i] == tool) {
     lN     = contact->lam[3 * i];
@@ -2001,7 +2009,7 @@ PetscErrorCode ContactSetToolPresent(Contact contact, PetscInt t, PetscBool pres
 PetscErrorCode ContactKeepCommitted(Contact contact, PetscInt keep)
 {
   PetscFunctionBeginUser;
-  PetscCheck(keep >= 0 && keep <= 2, contact->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactKeepCommitted: mode %" PetscInt_FMT " must be 0, 1 or 2", keep);
+  PetscCheck(keep >= 0 && keep <= 3, contact->comm, PETSC_ERR_ARG_OUTOFRANGE, "ContactKeepCommitted: mode %" PetscInt_FMT " must be 0, 1, 2 or 3", keep);
   contact->keep = keep;
   PetscFunctionReturn(0);
 }
