@@ -27,6 +27,12 @@ typedef struct {
   PetscInt  step, total_its, total_cuts, stage; /* stage: the index of the last step's stage */
   PetscReal lambda, dl, dl_prev;
   Vec       hold; /* the bases of the holding conditions (bc.h; NULL: none), written and read */
+  /* the converged state before the previous one and its increment, for the predictor's curvature
+     term (-load_predictor_curvature): written when prev2 is set and dl_prev2 > 0; read into
+     prev2 when it is set and the checkpoint has them (dl_prev2 0 otherwise: the first step after
+     the restart extrapolates linearly) */
+  Vec       prev2;
+  PetscReal dl_prev2;
 } CheckpointInfo;
 
 PetscErrorCode ResultsSetFromOptions(MPI_Comm comm, Results *res);

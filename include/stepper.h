@@ -24,7 +24,7 @@ typedef struct {
   PetscReal curvature;     /* -load_predictor_curvature: the share of the quadratic term added to
                               the extrapolation (0: the linear extrapolation)                    */
   Vec       Uprev2;        /* the converged state before Uprev, at dl_prev2 before it (curvature) */
-  PetscReal dl_prev2;      /* (0: none yet, e.g. after a restart: the step extrapolates linearly)  */
+  PetscReal dl_prev2;      /* (0: none yet, or a restart from a checkpoint without it: linear)   */
   PetscInt  stall_its;     /* Newton has stalled when |R| did not fall below stall_factor times */
   PetscReal stall_factor;  /* its value stall_its iterations earlier (0: no test)              */
   PetscReal force_tol;     /* -newton_force_tol: Newton has converged also when |R| is below this

@@ -1,6 +1,8 @@
 /* Checkpoint and restart. DIR/checkpoint.h5 holds all committed state in the source mesh's row
    order (iorows.h), so that it reads back on any number of ranks: the displacements of the last
-   two converged steps, the plastic history of every Gauss point, the contact state of every slave
+   two converged steps (three with -load_predictor_curvature: the datasets *_previous2 and the
+   attribute dl_prev2, absent otherwise, so that a run restarted with the curvature term repeats
+   the uninterrupted one), the plastic history of every Gauss point, the contact state of every slave
    node (frame of eqs 28-30 included), the step counter, load level and increments, and a format
    version. It is written to checkpoint.h5.tmp and renamed: a run killed at any moment leaves the
    previous checkpoint whole. */
@@ -170,6 +172,7 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
   double     a[11];
   const char *names[11] = {"format_version", "step", "lambda", "dl", "dl_prev", "total_its", "total_cuts", "vertices", "cells", "slave_nodes", "stage"};
   PetscInt   nsg = ContactNumSlaves(problem->contact);
+  PetscBool  has2 = PETSC_FALSE; /* the state before the previous one is transferred */
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nsg, 1, MPIU_INT, MPI_SUM, pb->comm));
@@ -213,6 +216,26 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
   if (write) PetscCall(VertexValues(pb, problem->Uprev, own, PETSC_FALSE));
   PetscCall(OwnedRows(file, "displacement_previous", write, (IORows *)&pb->rv, 3, own, path));
   if (!write) PetscCall(VertexValues(pb, problem->Uprev, own, PETSC_TRUE));
+  /* the state before the previous one (-load_predictor_curvature), where there is one: written
+     when the run has it, read when the run uses it and the checkpoint has it */
+  {
+    if (write) has2 = (ci->prev2 && ci->dl_prev2 > 0) ? PETSC_TRUE : PETSC_FALSE;
+    else {
+      ci->dl_prev2 = 0;
+      has2         = (ci->prev2 && H5Lexists(file, "displacement_previous2", H5P_DEFAULT) > 0 && H5Aexists(file, "dl_prev2") > 0) ? PETSC_TRUE : PETSC_FALSE;
+    }
+    if (has2) {
+      double d2 = ci->dl_prev2;
+      PetscCall(Attr(file, "dl_prev2", write, &d2, path));
+      if (write) PetscCall(VertexValues(pb, ci->prev2, own, PETSC_FALSE));
+      PetscCall(OwnedRows(file, "displacement_previous2", write, (IORows *)&pb->rv, 3, own, path));
+      if (!write) {
+        PetscCheck(d2 > 0, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the attribute dl_prev2 is %g (an increment must be > 0)", path, d2);
+        PetscCall(VertexValues(pb, ci->prev2, own, PETSC_TRUE));
+        ci->dl_prev2 = d2;
+      }
+    }
+  }
   /* the bases of the conditions that hold their dofs where a stage switched them on */
   if (ci->hold) {
     if (write) PetscCall(VertexValues(pb, ci->hold, own, PETSC_FALSE));
@@ -250,6 +273,11 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
         PetscCall(ProblemSetToolValues(problem, problem->Uc, tv));
         PetscCall(ProblemSetToolValues(problem, problem->Uprev, tv + ntu));
         PetscCall(ContactToolCheckpointUnpack(problem->contact, tv + 2 * ntu));
+      }
+      if (has2) { /* and in the state before the previous one */
+        if (write) PetscCall(ProblemGetToolValues(problem, ci->prev2, tv));
+        PetscCall(Rows(file, "tool_unknowns_previous2", write, 1, ntu, write ? (pb->rank == 0 ? 1 : 0) : 1, 0, tv, path));
+        if (!write) PetscCall(ProblemSetToolValues(problem, ci->prev2, tv));
       }
       PetscCall(PetscFree(tv));
     }

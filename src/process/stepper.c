@@ -455,8 +455,10 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(VecDuplicate(pb->U, &R));
   PetscCall(VecDuplicate(pb->U, &W));
   st->Uprev2   = NULL;
-  st->dl_prev2 = 0; /* also after a restart: the checkpoint holds two states, the first step extrapolates linearly */
+  st->dl_prev2 = 0; /* after a restart: the checkpoint's, where it has the state (else the first step extrapolates linearly) */
   if (st->curvature > 0) PetscCall(VecDuplicate(pb->U, &st->Uprev2));
+  ci.prev2    = st->Uprev2;
+  ci.dl_prev2 = 0;
   PetscCall(SNESSetConvergenceHistory(snes, rhist, itshist, 256, PETSC_TRUE));
   PetscCall(SNESSetUpdate(snes, NewtonUpdate));
   {
@@ -497,6 +499,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     lam_c      = ci.lambda;
     dl         = ci.dl;
     dl_prev    = ci.dl_prev;
+    st->dl_prev2 = ci.dl_prev2;
     total_its  = ci.total_its;
     total_cuts = ci.total_cuts;
     stage      = ci.stage;
@@ -797,6 +800,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       ci.lambda     = lam_c;
       ci.dl         = dl;
       ci.dl_prev    = dl_prev;
+      ci.dl_prev2   = st->dl_prev2;
       ci.total_its  = total_its;
       ci.total_cuts = total_cuts;
       PetscCall(CheckpointWrite(res, pb, &ci));
