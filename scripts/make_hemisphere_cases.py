@@ -57,9 +57,7 @@ COMMON = """-mesh_type blank
 # contact: the bottom face on the punch, the top face on the die
 -contact_set bottom,top
 {penalty}-contact_friction {mu}
--load_steps 40
--load_dt_max 0.05
--output_interval 4
+{stepping}-output_interval 4
 -output_dir out/{name}
 """
 ANALYTIC = """-tool_names punch,die
@@ -90,6 +88,19 @@ PENALTY_AREA = ("# penalties per unit area (N/mm3): the seed mesh's per-node val
 # per mesh: on the extra-fine mesh a few steps take up to 19 Newton iterations; the increment
 # grows again after steps of up to 10
 EXTRA = {"_xfine": "# steps of up to 10 Newton iterations let the increment grow again after a cut\n-load_grow_its 10\n"}
+# load stepping: increments from 1/40 of the travel growing by 1.5 up to 1/20 after steps of at
+# most 5 Newton iterations, the linear extrapolation and the committed contact held on the
+# frictionless tools in a step's first iteration (the code's defaults)
+STEPPING = "-load_steps 40\n-load_dt_max 0.05\n"
+# the Coons cases on the seed and refined meshes: the predictor's curvature term (half the
+# quadratic term through the last three converged states), the committed contact held on every
+# tool (friction: the moving punch and the die at rest) in a step's first iteration, increments
+# from 1/40 of the travel doubling up to 1/15: 88 Newton iterations each on the seed mesh against
+# 115 and 144 (doc/performance.md, Newton iterations, "The seed cases' solution strategy")
+STEPPING_NEWTON = ("# Newton strategy (doc/performance.md, Newton iterations): the predictor's curvature term, the\n"
+                   "# committed contact held in a step's first iteration, increments doubling up to 1/15 of the travel\n"
+                   "-load_steps 40\n-load_dt_max 0.0666666666666667\n-load_grow_factor 2\n-load_predictor_curvature 0.5\n")
+KEEP_ALL = "-newton_keep_contact all\n"
 # Coons tools: the paper's construction with each punch patch split 3 x 3 (27 + 1 plane) and the
 # die fillet in 4 sectors, so that the tool surfaces lie within 0.02 mm of the sphere and torus;
 # the paper's own 3 + 1 and 1 patches (up to 0.52 mm off) are kept in hemisphere_*_coons3.opts
@@ -132,7 +143,9 @@ for fr, mu, what in (("frictionless", 0, "frictionless"), ("friction", 0.15, "Co
             if tl == "_coons3" and ms:
                 continue
             name = f"hemisphere_{fr}{tl}{ms}"
-            text = HEAD.format(what=what, mesh=mdesc, tools=tdesc) + COMMON.format(nc=nc, nr=nr, nl=nl, mu=mu, name=name, penalty=PENALTY_AREA if ms else PENALTY_NODE) + EXTRA.get(ms, "") + tools
+            newton = tl == "" and ms in ("", "_refined")
+            stepping = (STEPPING_NEWTON + (KEEP_ALL if mu else "")) if newton else STEPPING
+            text = HEAD.format(what=what, mesh=mdesc, tools=tdesc) + COMMON.format(nc=nc, nr=nr, nl=nl, mu=mu, name=name, penalty=PENALTY_AREA if ms else PENALTY_NODE, stepping=stepping) + EXTRA.get(ms, "") + tools
             with open(os.path.join(cases, name + ".opts"), "w") as f:
                 f.write(text if text.endswith("\n") else text + "\n")
             print("wrote cases/" + name + ".opts")

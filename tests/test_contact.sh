@@ -58,14 +58,24 @@ done
 atrito 1 jac_sphere_keepall -options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 -newton_keep_contact all -contact_frame_carry rotation -snes_test_jacobian &&
   pycheck snes_test_jacobian "$OUT/jac_sphere_keepall.log" 10 1e-5 "with contact on a sphere, the committed contact set held on it in the first iteration (-newton_keep_contact all)" --contact "$OUT/jac_sphere_keepall"
 #    the first iteration of a step holds the committed contact set (-newton_keep_contact, default
-#    on frictionless tools): its Jacobian is tested against the held residual (the seed punch,
-#    steps 16 and 17, where lightly pressed nodes stand off the punch at the predictor; restarted
-#    from step 15, since the finite-difference Jacobian costs 2 s each)
+#    on frictionless tools): its Jacobian is tested against the held residual (the seed punch with
+#    the code's default stepping, steps 16 and 17, where lightly pressed nodes stand off the punch
+#    at the predictor; restarted from step 15, since the finite-difference Jacobian costs 2 s each)
 #    (-load_max_steps stops each run with exit 1 and its error line)
-atrito_rc 1 jac_keep0 -options_file cases/hemisphere_frictionless.opts -output_interval 0 -load_max_steps 15 -checkpoint_interval 15
-atrito_rc 1 jac_keep -options_file cases/hemisphere_frictionless.opts -output_interval 0 -restart "$OUT/jac_keep0/checkpoint.h5" -load_max_steps 17 -snes_test_jacobian
+DEFSTEP="-load_dt_max 0.05 -load_grow_factor 1.5 -load_predictor_curvature 0"
+# shellcheck disable=SC2086
+atrito_rc 1 jac_keep0 -options_file cases/hemisphere_frictionless.opts $DEFSTEP -output_interval 0 -load_max_steps 15 -checkpoint_interval 15
+# shellcheck disable=SC2086
+atrito_rc 1 jac_keep -options_file cases/hemisphere_frictionless.opts $DEFSTEP -output_interval 0 -restart "$OUT/jac_keep0/checkpoint.h5" -load_max_steps 17 -snes_test_jacobian
 grep -q "load_max_steps 17 reached" "$OUT/jac_keep.log" || not_ok "jac_keep did not run to step 17 (exit $RC)"
 pycheck snes_test_jacobian "$OUT/jac_keep.log" 10 1e-5 "with the committed contact set held in the first iteration (-newton_keep_contact frictionless), frictionless seed punch, steps 16-17"
+#    and on every tool with friction (the seed case with friction, -newton_keep_contact all: the
+#    moving punch and the die at rest), step 11, where 12 of the 31 nodes pressed on the die's
+#    fillet stand off it at the predictor (restarted from step 10)
+atrito_rc 1 jac_keepall0 -options_file cases/hemisphere_friction.opts -output_interval 0 -load_max_steps 10 -checkpoint_interval 10
+atrito_rc 1 jac_keepall -options_file cases/hemisphere_friction.opts -output_interval 0 -restart "$OUT/jac_keepall0/checkpoint.h5" -load_max_steps 11 -snes_test_jacobian
+grep -q "load_max_steps 11 reached" "$OUT/jac_keepall.log" || not_ok "jac_keepall did not run to step 11 (exit $RC)"
+pycheck snes_test_jacobian "$OUT/jac_keepall.log" 5 1e-5 "with the committed contact set held in the first iteration on every tool (-newton_keep_contact all), the seed punch with friction, step 11" --contact "$OUT/jac_keepall"
 
 # 3. quadratic convergence: elastic block pressed into a sphere that then slides, with friction
 atrito 1 quad -options_file cases/block_sphere.opts -output_interval 0 -snes_monitor &&
