@@ -6,8 +6,9 @@ iterations, the time per Newton iteration and its split, the punch force, for so
         [--cells NC,NR] [--probe 5] [--logdir DIR] [--reuse] [--output doc/performance.md]
 
 What it does
-  1. Before each variant, times the seed case without friction (cases/hemisphere_frictionless.opts,
-     1 rank, --probe runs, the median): the machine's speed at that time, since the machine is
+  1. Before each variant, times the seed case without friction (cases/hemisphere_frictionless.opts
+     with the code's default stepping, as its file had it before 2026-11-26: 21 steps, 115 Newton
+     iterations; 1 rank, --probe runs, the median): the machine's speed at that time, since the machine is
      shared and its speed varies by a factor of two over a day; compare variants only at the same
      probe time.
   2. Runs cases/hemisphere_friction_disk.opts (whole blank, 4 layers, friction mu 0.15, analytic
@@ -48,6 +49,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASE = "cases/hemisphere_friction_disk.opts"
 SOLVER = "cases/solver_amgsys_fast.opts"
 SEED = "cases/hemisphere_frictionless.opts"
+# the probe's work as it was before the seed case set its own stepping (2026-11-26): the code's
+# default stepping and predictor, so that probes of all dates time the same run
+SEED_OLD = ["-load_dt_max", "0.05", "-load_grow_factor", "1.5", "-load_predictor_curvature", "0"]
 HEADING = "## The 200 000-hexahedra friction case"
 TARGET_S = 1800.0
 
@@ -60,7 +64,7 @@ def probe(binary, n, work):
     ts = []
     for _ in range(n):
         t0 = time.time()
-        r = subprocess.run([binary, "-options_file", SEED, "-output_interval", "0", "-output_dir", os.path.join(work, "probe_out")],
+        r = subprocess.run([binary, "-options_file", SEED] + SEED_OLD + ["-output_interval", "0", "-output_dir", os.path.join(work, "probe_out")],
                            cwd=ROOT, env=benchutil.run_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         if r.returncode:
             sys.exit(f"bench_friction200k: the probe ({SEED}) failed with exit code {r.returncode}")
