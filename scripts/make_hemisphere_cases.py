@@ -95,7 +95,7 @@ STEPPING = "-load_steps 40\n-load_dt_max 0.05\n"
 # the Coons cases on the seed and refined meshes: the predictor's curvature term (half the
 # quadratic term through the last three converged states), the committed contact held on every
 # tool (friction: the moving punch and the die at rest) in a step's first iteration, increments
-# from 1/40 of the travel doubling up to 1/15: 88 Newton iterations each on the seed mesh against
+# from 1/40 of the travel doubling up to 1/15: 89 and 88 Newton iterations on the seed mesh against
 # 115 and 144 (doc/performance.md, Newton iterations, "The seed cases' solution strategy")
 STEPPING_NEWTON = ("# Newton strategy (doc/performance.md, Newton iterations): the predictor's curvature term, the\n"
                    "# committed contact held in a step's first iteration, increments doubling up to 1/15 of the travel\n"
