@@ -155,7 +155,7 @@ else not_ok "augmented restart with softened penalties failed"; tail -n 5 "$OUT/
 #     within 0.2 % of the augmented run at K_N 1e5, the Newton iterations at most 1.5 times the plain
 #     penalty run's at K_N 1e3 (doc/contact.md, measurements: the Coons seed case with the code's
 #     default stepping and keeps, given here since its file now sets its own, doc/performance.md)
-FRI="-options_file cases/hemisphere_friction.opts -output_interval 0 -load_dt_max 0.05 -load_grow_factor 1.5 -load_predictor_curvature 0"
+FRI="-options_file cases/hemisphere_friction.opts -output_interval 0 $DEFSTEP"
 FRA="-options_file cases/hemisphere_friction_analytic.opts -output_interval 0 -contact_penalty_normal 1e3 -contact_augmented -contact_augmented_tol 1e-3"
 # shellcheck disable=SC2086
 atrito 1 fpen $FRI -contact_penalty_normal 1e3 -newton_keep_contact frictionless

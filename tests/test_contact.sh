@@ -62,7 +62,6 @@ atrito 1 jac_sphere_keepall -options_file cases/block_sphere.opts -output_interv
 #    the code's default stepping, steps 16 and 17, where lightly pressed nodes stand off the punch
 #    at the predictor; restarted from step 15, since the finite-difference Jacobian costs 2 s each)
 #    (-load_max_steps stops each run with exit 1 and its error line)
-DEFSTEP="-load_dt_max 0.05 -load_grow_factor 1.5 -load_predictor_curvature 0"
 # shellcheck disable=SC2086
 atrito_rc 1 jac_keep0 -options_file cases/hemisphere_frictionless.opts $DEFSTEP -output_interval 0 -load_max_steps 15 -checkpoint_interval 15
 # shellcheck disable=SC2086

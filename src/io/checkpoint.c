@@ -218,22 +218,20 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
   if (!write) PetscCall(VertexValues(pb, problem->Uprev, own, PETSC_TRUE));
   /* the state before the previous one (-load_predictor_curvature), where there is one: written
      when the run has it, read when the run uses it and the checkpoint has it */
-  {
-    if (write) has2 = (ci->prev2 && ci->dl_prev2 > 0) ? PETSC_TRUE : PETSC_FALSE;
-    else {
-      ci->dl_prev2 = 0;
-      has2         = (ci->prev2 && H5Lexists(file, "displacement_previous2", H5P_DEFAULT) > 0 && H5Aexists(file, "dl_prev2") > 0) ? PETSC_TRUE : PETSC_FALSE;
-    }
-    if (has2) {
-      double d2 = ci->dl_prev2;
-      PetscCall(Attr(file, "dl_prev2", write, &d2, path));
-      if (write) PetscCall(VertexValues(pb, ci->prev2, own, PETSC_FALSE));
-      PetscCall(OwnedRows(file, "displacement_previous2", write, (IORows *)&pb->rv, 3, own, path));
-      if (!write) {
-        PetscCheck(d2 > 0, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the attribute dl_prev2 is %g (an increment must be > 0)", path, d2);
-        PetscCall(VertexValues(pb, ci->prev2, own, PETSC_TRUE));
-        ci->dl_prev2 = d2;
-      }
+  if (write) has2 = (ci->prev2 && ci->dl_prev2 > 0) ? PETSC_TRUE : PETSC_FALSE;
+  else {
+    ci->dl_prev2 = 0;
+    has2         = (ci->prev2 && H5Lexists(file, "displacement_previous2", H5P_DEFAULT) > 0 && H5Aexists(file, "dl_prev2") > 0) ? PETSC_TRUE : PETSC_FALSE;
+  }
+  if (has2) {
+    double d2 = ci->dl_prev2;
+    PetscCall(Attr(file, "dl_prev2", write, &d2, path));
+    if (write) PetscCall(VertexValues(pb, ci->prev2, own, PETSC_FALSE));
+    PetscCall(OwnedRows(file, "displacement_previous2", write, (IORows *)&pb->rv, 3, own, path));
+    if (!write) {
+      PetscCheck(d2 > 0, pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the attribute dl_prev2 is %g (an increment must be > 0)", path, d2);
+      PetscCall(VertexValues(pb, ci->prev2, own, PETSC_TRUE));
+      ci->dl_prev2 = d2;
     }
   }
   /* the bases of the conditions that hold their dofs where a stage switched them on */
