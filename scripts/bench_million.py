@@ -3,6 +3,7 @@
 
   /usr/bin/python3 scripts/bench_million.py [--point NC,NR,STEPS,TRAVEL,RANKS[,m] ...] [--timeout S]
                                             [--logdir DIR] [--reuse] [--output doc/performance.md]
+                                            [--solver cases/solver_amgsys_sheet.opts]
 
 What it does
   1. Runs the friction benchmark on the whole 4-layer blank (cases/hemisphere_friction_disk.opts:
@@ -566,7 +567,9 @@ def main():
     ap.add_argument("--reuse", action="store_true", help="read the logs in --logdir instead of running")
     ap.add_argument("--extra", default="", help="more options for every run (e.g. -snes_monitor -ksp_converged_reason to follow a long run)")
     ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--solver", default=SOLVER, help=f"the solver's options file (default {SOLVER}); the section's text describes the default")
     a = ap.parse_args()
+    globals()["SOLVER"] = a.solver
     points = []
     for s in a.point:
         v = s.split(",")

@@ -8,8 +8,8 @@
 #
 #   bash scripts/memcheck.sh [--quick]
 #
-# --quick: only the contact object's unit test and the frictional and augmented runs (about a
-# minute; tests/test_valgrind.sh runs these in `make check`).
+# --quick: only the unit tests of the contact object and of the sheet's coarse space and the
+# frictional and augmented runs (about a minute; tests/test_valgrind.sh runs these in `make check`).
 # Each program must exit 0 with no error reported (valgrind's --error-exitcode); reports inside
 # Open MPI's runtime thread are suppressed by tests/valgrind.supp. The logs go to $MEMCHECK_OUT
 # (default out/memcheck); a program still running after $MEMCHECK_TIMEOUT s (default 1200) is
@@ -58,11 +58,12 @@ check() {
 # and Abaqus files)
 if [ $QUICK -eq 1 ]; then
   check test_contact_object-np2 2 bin-vg/test_contact_object
+  check test_sheetcoarse-np2 2 bin-vg/test_sheetcoarse
 else
   for t in material hill48 yld91 umat fe eas meshgen contact; do
     check "test_$t" 0 "bin-vg/test_$t"
   done
-  for t in loadcurve contact_object toolforce lu predictor linesearch; do
+  for t in loadcurve contact_object toolforce lu predictor linesearch sheetcoarse; do
     check "test_$t-np2" 2 "bin-vg/test_$t"
   done
   check test_output-np2 2 bin-vg/test_output -output_dir "$OUT/output"
@@ -96,6 +97,9 @@ run seed_msh24 2 -options_file cases/hemisphere_frictionless_msh24.opts -tool_pu
 run seed_inp24 1 -options_file cases/hemisphere_frictionless_inp24.opts -tool_punch_motion 0,0,4 -load_steps 2
 # the iterative solver (BoomerAMG through -pc_type amgsys) on a small whole blank
 run amgsys_disk 2 -options_file cases/hemisphere_friction_disk.opts -options_file cases/solver_amgsys.opts \
+  -blank_core_cells 4 -blank_radial_cells 10 -blank_layers 2 -tool_punch_motion 0,0,1 -load_steps 1
+# the same with the sheet's coarse space (the iterate composed on the Jacobian, hypre's vectors as work)
+run amgsys_sheet_disk 2 -options_file cases/hemisphere_friction_disk.opts -options_file cases/solver_amgsys_sheet.opts \
   -blank_core_cells 4 -blank_radial_cells 10 -blank_layers 2 -tool_punch_motion 0,0,1 -load_steps 1
 
 echo "$pass passed, $fail failed"

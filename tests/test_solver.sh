@@ -202,3 +202,20 @@ TJ="-options_file cases/hemisphere_friction_disk.opts -blank_core_cells 2 -blank
 atrito 2 hypre_coo2 $TJ -options_file cases/solver_amgsys_fast.opts
 atrito 2 hypre_msv2 $TJ -options_file cases/solver_amgsys_fast.opts -assembly_coo 0
 compare "$OUT/hypre_msv2/history.csv" "$OUT/hypre_coo2/history.csv" 6 "whole blank (np=2): the Jacobian by COO into hypre's format against MatSetValues into it"
+
+# 16. the sheet's coarse space (cases/solver_amgsys_sheet.opts: amgsys with plate-like modes on a
+#     grid of 4 mm after each V-cycle, src/solver/sheetcoarse.c): the quarter blank of section 10
+#     (symmetry planes: single components removed) at 1 and 2 ranks against LU; the whole blank
+#     of section 9 against LU, in fewer Krylov iterations than cases/solver_amgsys.opts (each
+#     step's most) and at most half its total; every option of the file read
+for np in 1 2; do
+  atrito $np quarter_sheet$np $QUARTER -options_file cases/solver_amgsys_sheet.opts &&
+    compare "$OUT/quarter_lu/history.csv" "$OUT/quarter_sheet$np/history.csv" 6 "quarter blank with friction: BiCGStab + amgsys with the sheet's coarse space (np=$np) against LU"
+done
+atrito 2 disk_sheet2 $DISK -options_file cases/solver_amgsys_sheet.opts &&
+  compare "$OUT/disk_lu/history.csv" "$OUT/disk_sheet2/history.csv" 6 "whole blank with friction: amgsys with the sheet's coarse space (np=2) against LU"
+ms=$(most_of "$OUT/quarter_sheet1.log"); mq=$(most_of "$OUT/quarter_sys1.log"); md=$(most_of "$OUT/disk_sheet2.log"); mo=$(most_of "$OUT/disk_sys.log")
+ts=$(sum_of "$OUT/disk_sheet2.log"); to=$(sum_of "$OUT/disk_sys.log")
+[ "$ms" -ge 1 ] && [ "$ms" -lt "$mq" ] && [ "$md" -ge 1 ] && [ "$md" -lt "$mo" ] && [ $((2 * ts)) -le "$to" ] && ! grep -q "never used" "$OUT/quarter_sheet1.log" "$OUT/disk_sheet2.log" &&
+  ok "the sheet's coarse space: at most $ms Krylov iterations per Newton iteration on the quarter blank (without: $mq), $md on the whole blank (without: $mo), $ts in all there (without: $to)" ||
+  not_ok "the sheet's coarse space: most $ms (quarter; without $mq), $md (whole; without $mo), total $ts (without $to), or an option never used"

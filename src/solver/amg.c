@@ -30,7 +30,13 @@
    The Jacobian is used in hypre's format as it is (-assembly_mat_type hypre), any other type is
    converted at each setup. One V-cycle per application. hypre's nodal coarsening (SetNodal) is
    not offered: it needs every node to have all three unknowns, which is what a constrained
-   component breaks. */
+   component breaks.
+
+   -pc_amgsys_sheet_spacing H (> 0; cases/solver_amgsys_sheet.opts) adds after each V-cycle a
+   coarse correction by plate-like modes, y <- y + P A_c^-1 P^T (x - A y) (src/solver/
+   sheetcoarse.c, whose comment derives it): the V-cycle leaves a thin sheet's bending modes
+   almost untouched, and without it the Krylov iterations grow with the mesh. Its work vectors
+   are hypre's right-hand side and solution, free between applications. */
 #define _DEFAULT_SOURCE /* ffs() in hypre's utilities header */
 #include <strings.h>
 
@@ -45,6 +51,7 @@
 #include <_hypre_parcsr_mv.h>
 
 #include "problem.h"
+#include "sheetcoarse.h"
 
 typedef struct {
   HYPRE_Solver    amg;
@@ -56,6 +63,11 @@ typedef struct {
   PetscInt        coarsen, interp, pmax, aggnl, sweeps, relax;
   PetscInt        order;      /* relaxation order: 0 natural, 1 C points then F points (CF) */
   PetscInt        agginterp;  /* interpolation on the aggressive levels (hypre's numbering)  */
+  PetscReal       sheetH;     /* -pc_amgsys_sheet_spacing: the sheet's coarse space (0: none) */
+  PetscReal       sheetN[3];  /* -pc_amgsys_sheet_normal                                      */
+  SheetCoarse     sc;
+  Vec             wb, wx;     /* PETSc vectors on hypre's b and x arrays: the coarse space's work
+                                 (no memory of their own)                                     */
 } PC_AMGSys;
 
 static const char *const Coarsen[] = {"CLJP", "Ruge-Stueben", "modifiedRuge-Stueben", "Falgout", "PMIS", "HMIS", NULL};
@@ -86,6 +98,9 @@ static PetscErrorCode PCReset_AMGSys(PC pc)
   a->amg = NULL;
   a->ib = a->ix = NULL;
   PetscCall(MatDestroy(&a->hmat));
+  PetscCall(SheetCoarseDestroy(&a->sc));
+  PetscCall(VecDestroy(&a->wb));
+  PetscCall(VecDestroy(&a->wx));
   PetscFunctionReturn(0);
 }
 
@@ -209,6 +224,34 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
   HYPRE_BoomerAMGSetNumFunctions(a->amg, 3);
   HYPRE_BoomerAMGSetDofFunc(a->amg, dof); /* taken over by hypre */
   PetscCall(HypreCheck(comm, HYPRE_BoomerAMGSetup(a->amg, (HYPRE_ParCSRMatrix)pA, a->pb, a->px), "HYPRE_BoomerAMGSetup"));
+  if (a->sheetH > 0) { /* the sheet's coarse space at the positions of the Jacobian's iterate */
+    DM        dm;
+    Mat       Aop;
+    PetscObject U;
+    PetscCall(PCGetDM(pc, &dm));
+    PetscCall(PCGetOperators(pc, NULL, &Aop));
+    PetscCall(PetscObjectQuery((PetscObject)Aop, "atrito_iterate", &U));
+    HYPRE_Complex *b  = hypre_VectorData(hypre_ParVectorLocalVector((hypre_ParVector *)a->pb));
+    HYPRE_Complex *xs = hypre_VectorData(hypre_ParVectorLocalVector((hypre_ParVector *)a->px));
+    if (!a->sc) PetscCall(SheetCoarseCreate(comm, a->sheetH, a->sheetN, &a->sc));
+    if (a->wb) { /* hypre's vectors may have been made anew (the row range) */
+      PetscInt n;
+      PetscCall(VecGetLocalSize(a->wb, &n));
+      if (n != a->n) {
+        PetscCall(VecDestroy(&a->wb));
+        PetscCall(VecDestroy(&a->wx));
+      }
+    }
+    if (!a->wb) {
+      PetscCall(VecCreateMPIWithArray(comm, 1, a->n, PETSC_DECIDE, NULL, &a->wb));
+      PetscCall(VecCreateMPIWithArray(comm, 1, a->n, PETSC_DECIDE, NULL, &a->wx));
+    }
+    PetscCall(VecPlaceArray(a->wb, (PetscScalar *)b));
+    PetscCall(VecPlaceArray(a->wx, (PetscScalar *)xs));
+    PetscCall(SheetCoarseSetUp(a->sc, dm, Aop, (Vec)U, a->wb, a->wx));
+    PetscCall(VecResetArray(a->wb));
+    PetscCall(VecResetArray(a->wx));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -235,6 +278,13 @@ static PetscErrorCode PCApply_AMGSys(PC pc, Vec x, Vec y)
   PetscCall(VecGetArrayWrite(y, &ya));
   for (PetscInt i = 0; i < a->n; i++) ya[i] = xs[i];
   PetscCall(VecRestoreArrayWrite(y, &ya));
+  if (a->sc) { /* y += P A_c^-1 P^T (x - A y), the residual in hypre's right-hand side, now free */
+    PetscCall(VecPlaceArray(a->wb, (PetscScalar *)b));
+    PetscCall(MatMult(A, y, a->wb));
+    PetscCall(VecAYPX(a->wb, -1.0, x));
+    PetscCall(SheetCoarseApply(a->sc, a->wb, y));
+    PetscCall(VecResetArray(a->wb));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -259,9 +309,16 @@ static PetscErrorCode PCSetFromOptions_AMGSys(PC pc, PetscOptionItems *PetscOpti
   PetscCall(PetscOptionsEList("-pc_amgsys_agg_interp_type", "Interpolation on the levels of aggressive coarsening (multipass, or hypre's two-stage ones)", NULL, AggInterp, 7, AggInterp[ai], &ai, NULL));
   PetscCall(PetscOptionsEList("-pc_amgsys_relax_order", "Order of the smoothing: natural (hypre's default), or CF (coarse points first going down, fine first going up: PCHYPRE's default)", NULL, Order, 2, Order[oi], &oi, NULL));
   PetscCall(PetscOptionsInt("-pc_amgsys_sweeps", "Smoothing sweeps down and up", NULL, a->sweeps, &a->sweeps, NULL));
+  PetscCall(PetscOptionsReal("-pc_amgsys_sheet_spacing", "Spacing of the grid of the sheet's coarse space (plate-like modes) applied after each V-cycle, in model length units; 0: none", NULL, a->sheetH, &a->sheetH, NULL));
+  {
+    PetscInt nn = 3;
+    PetscCall(PetscOptionsRealArray("-pc_amgsys_sheet_normal", "The sheet's normal in its reference configuration (the grid lies in the plane normal to it)", NULL, a->sheetN, &nn, NULL));
+  }
   PetscCall(PetscOptionsInt("-pc_amgsys_relax_type", "hypre's relaxation type (6: symmetric Gauss-Seidel/Jacobi hybrid; 3: Gauss-Seidel/Jacobi hybrid, forward passes down and up, half of 6's cost per sweep, not symmetric; 8: l1 symmetric Gauss-Seidel; 18: l1 Jacobi)", NULL, a->relax, &a->relax, NULL));
   PetscOptionsHeadEnd();
   PetscCheck(a->theta > 0 && a->theta < 1, PetscObjectComm((PetscObject)pc), PETSC_ERR_USER_INPUT, "-pc_amgsys_strong_threshold %g: between 0 and 1", (double)a->theta);
+  PetscCheck(a->sheetH >= 0, PetscObjectComm((PetscObject)pc), PETSC_ERR_USER_INPUT, "-pc_amgsys_sheet_spacing %g: at least 0 (0: no coarse space)", (double)a->sheetH);
+  PetscCheck(a->sheetN[0] != 0 || a->sheetN[1] != 0 || a->sheetN[2] != 0, PetscObjectComm((PetscObject)pc), PETSC_ERR_USER_INPUT, "-pc_amgsys_sheet_normal: the sheet's normal must not be zero");
   PetscCheck(a->sweeps >= 1 && a->pmax >= 0 && a->aggnl >= 0, PetscObjectComm((PetscObject)pc), PETSC_ERR_USER_INPUT, "-pc_amgsys_sweeps at least 1, -pc_amgsys_P_max and -pc_amgsys_agg_nl at least 0");
   a->coarsen = CoarsenId[ci];
   a->interp  = InterpId[ii];
@@ -278,6 +335,11 @@ static PetscErrorCode PCView_AMGSys(PC pc, PetscViewer v)
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)v, PETSCVIEWERASCII, &ascii));
   if (ascii) PetscCall(PetscViewerASCIIPrintf(v, "  BoomerAMG, 3 functions from the mesh's sections: strength %g, coarsening %d, interpolation %d, P_max %d, aggressive levels %d (interpolation %d), sweeps %d, relaxation %d (%s order)\n", (double)a->theta, (int)a->coarsen, (int)a->interp, (int)a->pmax, (int)a->aggnl, (int)a->agginterp, (int)a->sweeps, (int)a->relax, Order[a->order]));
+  if (ascii && a->sc) {
+    PetscInt nodes, colours;
+    PetscCall(SheetCoarseGetSize(a->sc, &nodes, &colours));
+    PetscCall(PetscViewerASCIIPrintf(v, "  sheet coarse space: spacing %g, normal (%g, %g, %g), %" PetscInt_FMT " grid nodes (%" PetscInt_FMT " unknowns), %" PetscInt_FMT " colours\n", (double)a->sheetH, (double)a->sheetN[0], (double)a->sheetN[1], (double)a->sheetN[2], nodes, 6 * nodes, colours));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -296,6 +358,7 @@ static PetscErrorCode PCCreate_AMGSys(PC pc)
   a->relax   = 6;
   a->order     = 0;
   a->agginterp = 4; /* multipass */
+  a->sheetN[2]  = 1;
   pc->data                = a;
   pc->ops->setup          = PCSetUp_AMGSys;
   pc->ops->apply          = PCApply_AMGSys;

@@ -232,6 +232,8 @@ PetscErrorCode ProblemFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(pb->ev_jacobian, 0, 0, 0, 0));
   PetscCall(Assemble(pb, U, pb->lambda, PETSC_FALSE, P, PETSC_FALSE));
+  /* the iterate goes with the Jacobian: -pc_amgsys_sheet_spacing builds its modes at its positions */
+  PetscCall(PetscObjectCompose((PetscObject)P, "atrito_iterate", (PetscObject)U));
   if (pb->ndomain_err) PetscCall(SNESSetJacobianDomainError(snes));
   if (J != P) {
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
