@@ -62,9 +62,11 @@ def log_event_time(text, name, stage=None):
     return float(m.group(1)) if m else None
 
 
-def write_doc_section(path, heading, body):
+def write_doc_section(path, heading, body, keep_written=False):
     """replace the section `heading` of a Markdown file (to the next '## ' heading or the end) with
-    body, keeping every other section; append it when absent; written atomically"""
+    body, keeping every other section; append it when absent; written atomically. With
+    keep_written, the old section's '### ' subsections whose headings body does not have (written
+    by hand after a run: analyses, later measurements) are kept, in their order, after body."""
     text = ""
     if os.path.exists(path):
         with open(path) as f:
@@ -76,6 +78,12 @@ def write_doc_section(path, heading, body):
     else:
         end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
         tail = "".join(lines[end:])
+        if keep_written:
+            own = {l.rstrip() for l in body.splitlines() if l.startswith("### ")}
+            subs = [i for i in range(start + 1, end) if lines[i].startswith("### ")] + [end]
+            kept = ["".join(lines[a:b]).rstrip("\n") for a, b in zip(subs, subs[1:]) if lines[a].rstrip() not in own]
+            if kept:
+                body = body.rstrip("\n") + "\n\n" + "\n\n".join(kept) + "\n"
         new = "".join(lines[:start]) + body.rstrip("\n") + "\n" + ("\n" + tail if tail else "")
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     tmp = path + ".tmp"

@@ -2,7 +2,8 @@
 # The measurements of the benchmark scripts on synthetic data (no run of the code): the
 # NUMISHEET'93 sections (theta1, theta2, rho), the square cup's draw-in and its verdict; the
 # measured scaling section of doc/scaling-model.md from its stored runs; the 200 000-hexahedra
-# friction case's section of doc/performance.md from its runs' trimmed logs.
+# friction case's section of doc/performance.md from its runs' trimmed logs; a section rewritten
+# by a benchmark keeps its hand-written subsections (benchutil.write_doc_section keep_written).
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -35,4 +36,33 @@ if $PY scripts/bench_friction200k.py --reuse --logdir tests/data/bench200k $B200
 else
   not_ok "scripts/bench_friction200k.py --reuse: the section differs from doc/performance.md, or the render failed:"
   { tail -5 "$OUT/bench200k.log"; diff doc/performance.md "$OUT/performance.md" | head -20; } | indent
+fi
+# a section rewritten by a benchmark keeps the subsections written by hand after its runs
+# (scripts/bench_million.py: the iteration bound, the sheet's coarse space): the committed
+# "One million hexahedra" written again from its own generated part must give the committed file,
+# and a subsection the body writes again must be replaced, not kept twice
+if $PY - doc/performance.md "$OUT/keep.md" >"$OUT/keep.log" 2>&1 <<'PYEOF'
+import sys
+sys.path.insert(0, "scripts")
+import benchutil
+src, out = sys.argv[1], sys.argv[2]
+text = open(src).read()
+head = "## One million hexahedra"
+a = text.index(head + "\n")
+b = text.index("\n### The iteration bound", a)
+open(out, "w").write(text)
+benchutil.write_doc_section(out, head, text[a:b].rstrip("\n") + "\n", keep_written=True)
+assert open(out).read() == text, "the hand-written subsections were not kept as they were"
+open(out, "w").write("# T\n\n## A\n\nold\n\n### gen\n\nold gen\n\n### hand\n\nhand text\n\n## B\n\nb\n")
+benchutil.write_doc_section(out, "## A", "## A\n\nnew\n\n### gen\n\nnew gen\n", keep_written=True)
+want = "# T\n\n## A\n\nnew\n\n### gen\n\nnew gen\n\n### hand\n\nhand text\n\n## B\n\nb\n"
+assert open(out).read() == want, repr(open(out).read())
+benchutil.write_doc_section(out, "## A", "## A\n\nnewer\n")
+assert open(out).read() == "# T\n\n## A\n\nnewer\n\n## B\n\nb\n", repr(open(out).read())
+print("ok")
+PYEOF
+then
+  ok "benchutil.write_doc_section keep_written: the million-hexahedra section's hand-written subsections kept, a rewritten one replaced"
+else
+  not_ok "benchutil.write_doc_section keep_written:"; indent <"$OUT/keep.log"
 fi
