@@ -119,9 +119,30 @@ int main(int argc, char **argv)
     PetscReal       err = 0, scale = 0;
 
     PetscCall(SheetCoarseCreate(PETSC_COMM_WORLD, H, nrm, &sc));
-    PetscCall(SheetCoarseSetUp(sc, m.dm, A, U, NULL, NULL));
+    /* set up first at the reference positions, then at the iterate U: the second setup keeps the
+       grid and refreshes the positions, and must give the basis of a fresh setup at U */
+    PetscCall(SheetCoarseSetUp(sc, m.dm, A, NULL, NULL, NULL));
+    {
+      Mat         P0, P2;
+      SheetCoarse sc2;
+      PetscReal   d0, d2, n2;
+      PetscCall(SheetCoarseGetBasis(sc, &P0));
+      PetscCall(SheetCoarseSetUp(sc, m.dm, A, U, NULL, NULL));
+      PetscCall(SheetCoarseGetBasis(sc, &P));
+      PetscCall(SheetCoarseCreate(PETSC_COMM_WORLD, H, nrm, &sc2));
+      PetscCall(SheetCoarseSetUp(sc2, m.dm, A, U, NULL, NULL));
+      PetscCall(SheetCoarseGetBasis(sc2, &P2));
+      PetscCall(MatNorm(P2, NORM_FROBENIUS, &n2));
+      PetscCall(MatAXPY(P0, -1.0, P, DIFFERENT_NONZERO_PATTERN));
+      PetscCall(MatAXPY(P2, -1.0, P, DIFFERENT_NONZERO_PATTERN));
+      PetscCall(MatNorm(P0, NORM_FROBENIUS, &d0));
+      PetscCall(MatNorm(P2, NORM_FROBENIUS, &d2));
+      CHECK_ALL(n2 > 0 && d2 == 0 && d0 > 1e-3 * n2, "spacing %g: a second setup at another iterate gives the basis of a fresh one (difference %.2e; %.2e from the first setup's, of %.2e)", (double)H, (double)d2, (double)d0, (double)n2);
+      PetscCall(MatDestroy(&P0));
+      PetscCall(MatDestroy(&P2));
+      PetscCall(SheetCoarseDestroy(&sc2));
+    }
     PetscCall(SheetCoarseGetSize(sc, &nodes, &colours));
-    PetscCall(SheetCoarseGetBasis(sc, &P));
     PetscCall(SheetCoarseGetOperator(sc, &Ac));
     N = 6 * nodes;
 

@@ -311,8 +311,10 @@ static PetscErrorCode PCSetFromOptions_AMGSys(PC pc, PetscOptionItems *PetscOpti
   PetscCall(PetscOptionsInt("-pc_amgsys_sweeps", "Smoothing sweeps down and up", NULL, a->sweeps, &a->sweeps, NULL));
   PetscCall(PetscOptionsReal("-pc_amgsys_sheet_spacing", "Spacing of the grid of the sheet's coarse space (plate-like modes) applied after each V-cycle, in model length units; 0: none", NULL, a->sheetH, &a->sheetH, NULL));
   {
-    PetscInt nn = 3;
-    PetscCall(PetscOptionsRealArray("-pc_amgsys_sheet_normal", "The sheet's normal in its reference configuration (the grid lies in the plane normal to it)", NULL, a->sheetN, &nn, NULL));
+    PetscInt  nn = 3;
+    PetscBool set;
+    PetscCall(PetscOptionsRealArray("-pc_amgsys_sheet_normal", "The sheet's normal in its reference configuration (the grid lies in the plane normal to it)", NULL, a->sheetN, &nn, &set));
+    PetscCheck(!set || nn == 3, PetscObjectComm((PetscObject)pc), PETSC_ERR_USER_INPUT, "-pc_amgsys_sheet_normal: give three components (%" PetscInt_FMT " given)", nn);
   }
   PetscCall(PetscOptionsInt("-pc_amgsys_relax_type", "hypre's relaxation type (6: symmetric Gauss-Seidel/Jacobi hybrid; 3: Gauss-Seidel/Jacobi hybrid, forward passes down and up, half of 6's cost per sweep, not symmetric; 8: l1 symmetric Gauss-Seidel; 18: l1 Jacobi)", NULL, a->relax, &a->relax, NULL));
   PetscOptionsHeadEnd();

@@ -152,14 +152,17 @@ static inline void Hats(SheetCoarse sc, PetscInt i, PetscInt g[4], PetscReal phi
   }
 }
 
-/* rows: component, reference and current position, hat cell; the grid and its active nodes */
+/* rows: component, reference and current position, hat cell; the grid and its active nodes. All
+   but the current positions depend on the reference configuration only: they are built at the
+   first setup (and again if the row layout changes); later setups refresh the positions. */
 static PetscErrorCode Layout(SheetCoarse sc, DM dm, Mat A, Vec U)
 {
   PetscSection       s, gs, cs;
   Vec                cl;
   const PetscScalar *ca, *ua = NULL;
   PetscInt           pStart, pEnd, rend, nset = 0, lerr, gerr;
-  PetscReal          lo[4], hi[4], hmax = 0, *sp;
+  PetscReal          lo[4], hi[4], hmax = 0, *sp = NULL;
+  PetscBool          build = PETSC_FALSE;
   DM                 cdm;
 
   PetscFunctionBeginUser;
@@ -171,6 +174,7 @@ static PetscErrorCode Layout(SheetCoarse sc, DM dm, Mat A, Vec U)
   PetscCall(PetscSectionGetChart(s, &pStart, &pEnd));
   if (sc->n != rend - sc->rstart || !sc->base) { /* the owned nodes with rows, in the rows' order */
     PetscInt nv = 0;
+    build = PETSC_TRUE;
     PetscCall(FreeLayout(sc));
     sc->n = rend - sc->rstart;
     for (PetscInt p = pStart; p < pEnd; p++) {
@@ -189,7 +193,7 @@ static PetscErrorCode Layout(SheetCoarse sc, DM dm, Mat A, Vec U)
     PetscCall(PetscMalloc1(2 * nv, &sc->uw));
     PetscCall(PetscMalloc1(3 * nv, &sc->x));
   }
-  PetscCall(PetscMalloc1(2 * sc->nv, &sp));
+  if (build) PetscCall(PetscMalloc1(2 * sc->nv, &sp));
   PetscCall(VecGetArrayRead(cl, &ca));
   if (U) {
     PetscInt un;
@@ -230,8 +234,10 @@ static PetscErrorCode Layout(SheetCoarse sc, DM dm, Mat A, Vec U)
     sc->row0[v] = r0;
     sc->mask[v] = mask;
     for (int c = 0; c < 3; c++) sc->x[3 * v + c] = (float)(X[c] + u[c]);
-    sp[2 * v]     = X[0] * sc->e[0][0] + X[1] * sc->e[0][1] + X[2] * sc->e[0][2];
-    sp[2 * v + 1] = X[0] * sc->e[1][0] + X[1] * sc->e[1][1] + X[2] * sc->e[1][2];
+    if (sp) {
+      sp[2 * v]     = X[0] * sc->e[0][0] + X[1] * sc->e[0][1] + X[2] * sc->e[0][2];
+      sp[2 * v + 1] = X[0] * sc->e[1][0] + X[1] * sc->e[1][1] + X[2] * sc->e[1][2];
+    }
     v++;
   }
   PetscCall(VecRestoreArrayRead(cl, &ca));
@@ -240,6 +246,7 @@ static PetscErrorCode Layout(SheetCoarse sc, DM dm, Mat A, Vec U)
   PetscCall(MPIU_Allreduce(&lerr, &gerr, 1, MPIU_INT, MPI_MAX, sc->comm));
   if (gerr) PetscCall(PetscFree(sp));
   PetscCheck(!gerr, sc->comm, PETSC_ERR_SUP, "-pc_amgsys_sheet_spacing: the Jacobian has rows that are not the mesh's displacement unknowns");
+  if (!build) PetscFunctionReturn(0);
 
   /* the grid: the bounding box of the reference positions in the plane; the largest in-plane
      extent of a cell (the reach of A's couplings) */
