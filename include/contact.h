@@ -134,6 +134,26 @@ PetscErrorCode ContactAugmentTolerances(Contact c, PetscReal *tol, PetscReal *mt
 PetscErrorCode ContactAugmentSoften(Contact c, PetscBool *softened, PetscReal *factor);
 /* the contact status and normal force of every slave node at the current iterate */
 PetscErrorCode ContactRecordActive(Contact c);
+/* The predictor of a step, made consistent with the committed contact: every node pressed in the
+   committed state on a present tool is moved along the tool's normal at the
+   predicted position (u: local, with boundary values) until its gap is the committed one; the
+   correction is added to the global U (constrained components dropped), and skipped where it
+   exceeds a tenth of the element size normal to the contact face. Collective. */
+PetscErrorCode ContactProjectPressed(Contact c, const PetscScalar *u, PetscReal lambda, Vec U, PetscInt *nmoved, PetscReal *dmax);
+/* The longest step x - lambda Y (Y global, as SNES's update) that carries no slave node paired with a
+   tool at the iterate (u: local, with boundary values; ytool: the tool unknowns' part of Y) deeper than depth times the element size
+   normal to the contact face into it, linearised along the tool's normal (PETSC_MAX_REAL: no
+   limit). Collective. */
+PetscErrorCode ContactStepLimit(Contact c, const PetscScalar *u, PetscReal lambda, Vec Y, const PetscReal *ytool, PetscReal depth, PetscReal *lmax);
+/* per tool, what the last evaluation changed against ContactRecordActive's state (collective) */
+typedef struct {
+  PetscInt  nin, nout;  /* nodes that entered and left contact with the tool */
+  PetscReal fchange;    /* the largest normal force among them (before leaving, after entering) */
+  PetscInt  nactive;    /* nodes in contact now */
+  PetscInt  nslip;      /* nodes in contact before and now that changed between stick and slip */
+  PetscReal pen, fmax;  /* the largest penetration and normal force now */
+} ContactToolStatus;
+PetscErrorCode ContactStatusChanges(Contact c, ContactToolStatus *ts);
 /* nodes that entered or left contact in the last Newton iteration with a significant normal
    force (before or after: above 1e-3 of the largest normal force of the committed state and the
    last two iterates); count over all ranks and the smallest node id */

@@ -19,6 +19,9 @@
 typedef struct {
   double KN, KT, mu;
   double delta; /* > 0: the normal bracket smoothed over gaps -delta..delta (-contact_gap_smoothing) */
+  double reg;   /* > 0: the normal force regularised on the penetration side over 0..reg
+                   (-contact_regularization): t_N = x^2/(2w) for 0 < x < w, x - w/2 beyond,
+                   x = lN + K_N p, w = K_N reg; zero at every positive gap (x <= 0) */
 } ContactLaw;
 
 #define CONTACT_OPEN  0

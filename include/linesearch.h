@@ -43,6 +43,14 @@ PetscErrorCode NewtonLineSearchCreate(MPI_Comm comm, NewtonLineSearch *nls);
    makes the SNES's line search this one (a shell line search) where -newton_watchdog asks for it,
    else gives back the one it replaced (with its options); nothing when nls is NULL */
 PetscErrorCode NewtonLineSearchSetStage(NewtonLineSearch nls, SNES snes, PetscBool contact, PetscBool nodal_release);
+/* whether the current stage uses the energy line search (-newton_linesearch_contact energy) */
+PetscBool      NewtonLineSearchEnergy(NewtonLineSearch nls);
+/* the problem's count of residual evaluations outside its domain (the energy search shortens the
+   step where it grows) */
+PetscErrorCode NewtonLineSearchSetFailureCounter(NewtonLineSearch nls, const PetscInt *nfail);
+/* the longest step x - lambda y along the Newton direction that the geometry allows (lmax; the
+   energy search starts there when it is below 1) */
+PetscErrorCode NewtonLineSearchSetStepLimit(NewtonLineSearch nls, PetscErrorCode (*limit)(void *, Vec, Vec, PetscReal *), void *ctx);
 /* relaxed steps taken, those of them reverted, and residual evaluations of the line search */
 PetscErrorCode NewtonLineSearchGetCounts(NewtonLineSearch nls, PetscInt *relaxed, PetscInt *reverted, PetscInt *trials);
 PetscErrorCode NewtonLineSearchDestroy(NewtonLineSearch *nls);

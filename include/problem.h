@@ -88,6 +88,9 @@ PetscErrorCode ProblemEvaluate(Problem *pb, Vec U, PetscReal lambda);
 PetscErrorCode ProblemFormFunction(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode ProblemFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 /* Uloc = U with the boundary values at lambda */
+/* the largest entry of the residual F on the body's unknowns: its size, the node (source id), the
+   component (0, 1, 2) and the node's reference position (collective) */
+PetscErrorCode ProblemResidualPeak(Problem *pb, Vec F, PetscReal *val, PetscInt *node, PetscInt *comp, PetscReal x[3]);
 PetscErrorCode ProblemLocalWithBC(Problem *pb, Vec U, PetscReal lambda);
 /* the scale of the internal forces at the last residual assembly: sqrt(sum_e |f_e|^2) over the
    elements' force vectors before assembly (collective) */

@@ -42,6 +42,9 @@ typedef struct {
   PetscBool domain_backtrack; /* -newton_domain_backtrack: a failed trial point of PETSc's
                               backtracking search is rejected, not the end of the solve       */
   PetscBool chatter_check; /* a step whose last Newton iteration changed the active set fails  */
+  PetscBool monitor;       /* -newton_monitor_contact: one line per Newton iteration            */
+  PetscReal step_depth;    /* -newton_step_depth: the energy search's contact step limit        */
+  PetscBool pred_contact;  /* -load_predictor_contact: the predictor keeps the pressed nodes' gaps */
   PetscInt  keep_contact;  /* the first Newton iteration holds the committed pressed nodes closed:
                               0 no, 1 on frictionless tools, 2 and on frictional tools moved by
                               a prescribed displacement, 3 and on those at rest too

@@ -117,9 +117,15 @@ struct _p_Contact {
   PetscReal     search;        /* pairing distance                                           */
   PetscBool    *active_prev;   /* ns: in contact at the start of the current Newton iteration */
   PetscReal    *tN_prev;       /* ns: and its normal force then                              */
+  PetscInt     *tool_prev;     /* ns: and its tool then (-1: none)                          */
+  PetscInt     *status_prev;   /* ns: and its status then                                   */
   PairMemo     *pmemo;         /* ns: the last pairing of each node                          */
   PetscReal    *kn, *kt;       /* ns: per-node penalties (automatic penalty), else NULL      */
   PetscReal     hmin;          /* smallest element size normal to the contact faces (0: unknown) */
+  PetscBool     reg_auto;      /* -contact_regularization auto: reg_rel times the node's element size (automatic penalty) */
+  PetscReal     reg_rel;
+  PetscBool     pred_open;     /* (experiment) the predictor also moves unpressed penetrating nodes out */
+  PetscReal    *hn;            /* ns: the element size normal to the contact faces at each node (NULL: unknown) */
   PetscReal     tol;           /* the penetration tolerance of the augmentation              */
   PetscReal    *lam;           /* ns*3: multipliers of the current Newton solve (lN, lT1, lT2) */
   PetscInt     *lam_tool;      /* ns: the tool they belong to, -1: none                      */
@@ -587,6 +593,21 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     if (!sa && !sr) c->aug_tol_rel = 1e-2;
   }
   PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient mu", NULL, c->law.mu, &c->law.mu, NULL));
+  PetscCall(PetscOptionsBool("-contact_predictor_open", "experiment", NULL, c->pred_open, &c->pred_open, NULL));
+  {
+    char      buf[64] = "auto";
+    PetscBool set;
+    PetscCall(PetscOptionsString("-contact_regularization", "Penetration over which the normal contact force starts quadratically (C1: no force at any positive gap, the full penalty beyond it; 0: the plain bracket), a length, or auto: -contact_regularization_relative times the element size normal to the contact face at each node with the automatic penalty, 0 with a given one", "doc/contact.md", buf, buf, sizeof(buf), &set));
+    PetscCall(PetscStrcmp(buf, "auto", &c->reg_auto));
+    if (!c->reg_auto) {
+      char *end;
+      c->law.reg = strtod(buf, &end);
+      PetscCheck(end != buf && *end == 0 && c->law.reg >= 0 && PetscIsNormalReal(c->law.reg + 1), comm, PETSC_ERR_USER_INPUT, "-contact_regularization %s must be a length >= 0 or auto", buf);
+    }
+    c->reg_rel = 1e-2;
+    PetscCall(PetscOptionsReal("-contact_regularization_relative", "With -contact_regularization auto: the regularisation's width as a fraction of the element size normal to the contact face", "doc/contact.md", c->reg_rel, &c->reg_rel, NULL));
+    PetscCheck(c->reg_rel >= 0 && c->reg_rel < 1, comm, PETSC_ERR_USER_INPUT, "-contact_regularization_relative %g must lie in [0, 1)", (double)c->reg_rel);
+  }
   PetscCall(PetscOptionsReal("-contact_gap_smoothing", "Width (a length) over which the normal contact force is smoothed about gap 0 (C1 quadratic; 0: the plain bracket)", "doc/contact.md", c->law.delta, &c->law.delta, NULL));
   PetscCheck(c->law.delta >= 0 && !PetscIsInfOrNanReal(c->law.delta), comm, PETSC_ERR_USER_INPUT, "-contact_gap_smoothing %g must be >= 0", (double)c->law.delta);
   PetscCheck(c->kauto || (c->law.KN > 0 && PetscIsNormalReal(c->law.KN)), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal %g must be positive", (double)c->law.KN);
@@ -740,6 +761,7 @@ static inline ContactLaw NodeLaw(const struct _p_Contact *contact, PetscInt i, P
     law.KN *= contact->mesh->varea[contact->slave[i]];
     law.KT *= contact->mesh->varea[contact->slave[i]];
   }
+  if (contact->reg_auto) law.reg = (tc->kauto && contact->hn) ? contact->reg_rel * contact->hn[i] : 0;
   if (contact->kscale != 1) { /* grown by the augmentation within the current step */
     law.KN *= contact->kscale;
     law.KT *= contact->kscale;
@@ -809,7 +831,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
   PetscCall(PetscMalloc4(contact->ns, &contact->slave, 3 * contact->ns, &contact->sgdof, 3 * contact->ns, &contact->seed, contact->ns, &contact->has_seed));
   PetscCall(PetscArrayzero(contact->seed, 3 * contact->ns)); /* zero: no seed set yet (NodeEval) */
   PetscCall(PetscCalloc2(3 * contact->ns + 1, &contact->seedn, 3 * contact->ns + 1, &contact->yseed));
-  PetscCall(PetscCalloc2(contact->ns, &contact->active_prev, contact->ns, &contact->tN_prev));
+  PetscCall(PetscCalloc4(contact->ns, &contact->active_prev, contact->ns, &contact->tN_prev, contact->ns + 1, &contact->tool_prev, contact->ns + 1, &contact->status_prev));
   PetscCall(PetscMalloc1(contact->ns, &contact->pmemo));
   PetscCall(PetscCalloc2(contact->ns, &contact->cst_c, contact->ns, &contact->cst_t));
   PetscCall(PetscCalloc3(3 * contact->ns, &contact->lam, contact->ns, &contact->lam_tool, 3 * contact->ns, &contact->lam_r));
@@ -846,6 +868,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hmin, 1, MPIU_REAL, MPI_MIN, contact->comm));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nzero, 1, MPIU_INT, MPI_SUM, contact->comm));
     contact->hmin = hmin < PETSC_MAX_REAL ? hmin : 0;
+    contact->hn   = h;
     if (contact->kanyauto) {
       PetscReal E, kmin = PETSC_MAX_REAL, kmax = 0;
       PetscCheck(!nzero, contact->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, contact->set[0], contact->nset > 1 ? ", ..." : "");
@@ -863,7 +886,6 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmax, 1, MPIU_REAL, MPI_MAX, contact->comm));
       PetscCall(PetscPrintf(contact->comm, "contact: automatic penalty K_N = %g x E %g x A / h per node: smallest %g, largest %g; K_T %s; smallest element size normal to the contact faces %g\n", (double)contact->kfactor, (double)E, (double)kmin, (double)kmax, contact->ktauto ? "= -contact_penalty_ratio x K_N" : "as given", (double)contact->hmin));
     }
-    PetscCall(PetscFree(h));
   }
   if (contact->aug) {
     contact->tol = contact->aug_tol > 0 ? contact->aug_tol : PETSC_MAX_REAL;
@@ -950,12 +972,13 @@ PetscErrorCode ContactDestroy(Contact *c)
   if (contact->ntools && contact->mesh) {
     PetscCall(PetscFree4(contact->slave, contact->sgdof, contact->seed, contact->has_seed));
     PetscCall(PetscFree2(contact->seedn, contact->yseed));
-    PetscCall(PetscFree2(contact->active_prev, contact->tN_prev));
+    PetscCall(PetscFree4(contact->active_prev, contact->tN_prev, contact->tool_prev, contact->status_prev));
     PetscCall(PetscFree(contact->pmemo));
     PetscCall(PetscFree2(contact->cst_c, contact->cst_t));
     PetscCall(PetscFree3(contact->lam, contact->lam_tool, contact->lam_r));
     PetscCall(PetscFree2(contact->nrel, contact->nrel_tool));
     PetscCall(PetscFree2(contact->kn, contact->kt));
+    PetscCall(PetscFree(contact->hn));
     PetscCall(PetscFree(contact->tmask));
   }
   for (PetscInt t = 0; contact->tc && t < contact->ntools; t++)
@@ -1207,7 +1230,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
        the anchor, where the keep's residual is evaluated (the keep ends before the line search);
        its tangent there is K_T (I - n n^T), the terms of dn/dy vanishing with y - y_0, so the
        Jacobian stays the derivative of the residual (-snes_test_jacobian). */
-    const double g0 = law.delta > 0 ? -law.delta : 0.0, tb = lN - law.KN * pr.gap;
+    const double g0 = law.delta > 0 ? -law.delta : (law.reg > 0 ? -law.reg : 0.0), tb = lN - law.KN * pr.gap;
     double       tN0;
     st->status = ContactNodeEvalAug(&law, cc->tN, g0, pr.n, dnp, seed, tTn, ds, R, contact->fd ? NULL : K, st->t1, &tN0, st->tT);
     for (int k = 0; k < 3; k++) R[k] -= (tb - tN0) * pr.n[k];
@@ -1773,12 +1796,129 @@ PetscErrorCode ContactChatter(Contact contact, PetscInt *count, PetscInt *node)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ContactProjectPressed(Contact contact, const PetscScalar *u, PetscReal lambda, Vec U, PetscInt *nmoved, PetscReal *dmax)
+{
+  PetscInt  n = 0;
+  PetscReal dm = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const ContactState *cc = &contact->cst_c[i];
+    double              y[3], sh[3];
+    Projection          pr;
+    PetscScalar         d[3];
+    double              dg;
+    NodePosition(contact, i, u, y);
+    if (cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool >= 0 && !contact->tools[cc->tool].absent) {
+      CurShift(contact, cc->tool, lambda, sh);
+      if (ToolProject(&contact->tools[cc->tool], sh, y, contact->search, &pr)) continue;
+      dg = cc->gap - pr.gap;
+    } else if (contact->pred_open) {
+      /* not pressed in the committed state, pushed into a tool by the predictor: to its surface */
+      const PetscInt t = PairNode(contact, i, y, lambda, &pr);
+      if (t < 0 || !(pr.gap < 0)) continue;
+      dg = -pr.gap;
+    } else continue;
+    if (!(PetscAbsReal(dg) <= 0.1 * (contact->hn ? contact->hn[i] : contact->hmin))) continue;
+    for (int k = 0; k < 3; k++) {
+      d[k] = dg * pr.n[k];
+      if (contact->sgdof[3 * i + k] >= 0) PetscCall(VecSetValue(U, contact->sgdof[3 * i + k], d[k], ADD_VALUES));
+    }
+    n++;
+    dm = PetscMax(dm, PetscAbsReal(dg));
+  }
+  PetscCall(VecAssemblyBegin(U));
+  PetscCall(VecAssemblyEnd(U));
+  PetscCall(MPIU_Allreduce(&n, nmoved, 1, MPIU_INT, MPI_SUM, contact->comm));
+  PetscCall(MPIU_Allreduce(&dm, dmax, 1, MPIU_REAL, MPIU_MAX, contact->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactStepLimit(Contact contact, const PetscScalar *u, PetscReal lambda, Vec Y, const PetscReal *ytool, PetscReal depth, PetscReal *lmax)
+{
+  const PetscScalar *y;
+  PetscInt           rstart;
+  PetscReal          lm = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(Y, &rstart, NULL));
+  PetscCall(VecGetArrayRead(Y, &y));
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    double         x[3], dy[3] = {0, 0, 0}, dn;
+    Projection     pr;
+    const PetscInt t = (NodePosition(contact, i, u, x), PairNode(contact, i, x, lambda, &pr));
+    if (t < 0) continue;
+    for (int k = 0; k < 3; k++)
+      if (contact->sgdof[3 * i + k] >= 0) dy[k] = PetscRealPart(y[contact->sgdof[3 * i + k] - rstart]);
+    if (ytool && contact->tc[t].block >= 0) /* a force-driven tool moves with the step too */
+      for (int k = 0; k < 3; k++)
+        if (contact->tc[t].drive[k] == TOOL_DRIVE_FORCE) dy[k] -= ytool[3 * contact->tc[t].block + k];
+    dn = pr.n[0] * dy[0] + pr.n[1] * dy[1] + pr.n[2] * dy[2]; /* the step x - lambda Y: the gap falls by lambda dn */
+    {
+      const PetscReal h = depth * (contact->hn ? contact->hn[i] : contact->hmin), p = -pr.gap;
+      if (dn > 0 && h > 0 && p < h) lm = PetscMin(lm, (h - p) / dn);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(Y, &y));
+  PetscCall(MPIU_Allreduce(&lm, lmax, 1, MPIU_REAL, MPIU_MIN, contact->comm));
+  PetscFunctionReturn(0);
+}
+
+/* what changed at the last evaluation against the start of the Newton iteration (ContactRecordActive),
+   per tool: nodes that entered and left its contact, the largest normal force among them (before
+   for a node leaving, after for one entering), nodes pressed now, the largest penetration and
+   normal force now (collective) */
+PetscErrorCode ContactStatusChanges(Contact contact, ContactToolStatus *ts)
+{
+  const PetscInt nt = contact->ntools;
+  PetscReal     *cnt, *mx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc2(4 * nt + 1, &cnt, 3 * nt + 1, &mx));
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const ContactState *s   = &contact->cst_t[i];
+    const PetscInt      now = s->status != CONTACT_OPEN ? s->tool : -1, was = contact->tool_prev[i];
+    if (now >= 0) {
+      cnt[3 * now + 2] += 1;
+      mx[3 * now + 1] = PetscMax(mx[3 * now + 1], -s->gap);
+      mx[3 * now + 2] = PetscMax(mx[3 * now + 2], s->tN);
+    }
+    if (now == was) {
+      if (now >= 0 && s->status != contact->status_prev[i]) cnt[3 * nt + now] += 1;
+      continue;
+    }
+    if (now >= 0) {
+      cnt[3 * now] += 1;
+      mx[3 * now] = PetscMax(mx[3 * now], s->tN);
+    }
+    if (was >= 0) {
+      cnt[3 * was + 1] += 1;
+      mx[3 * was] = PetscMax(mx[3 * was], contact->tN_prev[i]);
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, cnt, (PetscMPIInt)(4 * nt), MPIU_REAL, MPIU_SUM, contact->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, (PetscMPIInt)(3 * nt), MPIU_REAL, MPIU_MAX, contact->comm));
+  for (PetscInt t = 0; t < nt; t++) {
+    ts[t].nin     = (PetscInt)cnt[3 * t];
+    ts[t].nout    = (PetscInt)cnt[3 * t + 1];
+    ts[t].nactive = (PetscInt)cnt[3 * t + 2];
+    ts[t].nslip   = (PetscInt)cnt[3 * nt + t];
+    ts[t].fchange = mx[3 * t];
+    ts[t].pen     = mx[3 * t + 1];
+    ts[t].fmax    = mx[3 * t + 2];
+  }
+  PetscCall(PetscFree2(cnt, mx));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ContactRecordActive(Contact contact)
 {
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < contact->ns; i++) {
     contact->active_prev[i] = contact->cst_t[i].status != CONTACT_OPEN;
     contact->tN_prev[i]     = contact->cst_t[i].status != CONTACT_OPEN ? contact->cst_t[i].tN : 0;
+    contact->tool_prev[i]   = contact->cst_t[i].status != CONTACT_OPEN ? contact->cst_t[i].tool : -1;
+    contact->status_prev[i] = contact->cst_t[i].status;
   }
   PetscFunctionReturn(0);
 }

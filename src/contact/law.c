@@ -130,6 +130,11 @@ int ContactNodeEvalAug(const ContactLaw *law, double lN, double g, const double 
     if (!(x > -w)) return CONTACT_OPEN;
     *tN   = x >= w ? x : (x + w) * (x + w) / (4 * w);
     lw.KN = x >= w ? law->KN : law->KN * (x + w) / (2 * w);
+  } else if (law->reg > 0) {
+    const double x = lN - law->KN * g, w = law->KN * law->reg;
+    if (!(x > 0)) return CONTACT_OPEN;
+    *tN   = x >= w ? x - 0.5 * w : x * x / (2 * w);
+    lw.KN = x >= w ? law->KN : law->KN * x / w;
   } else {
     if (g > 0 && !(lN - law->KN * g > 0)) return CONTACT_OPEN;
     *tN = lN > 0 ? lN + law->KN * p : law->KN * p;

@@ -23,13 +23,15 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->stall_its     = 0;
   st->ksp_target    = 0;
   st->stall_factor  = 0.9;
-  st->force_tol     = 0;
+  st->force_tol     = 1e-6;
   st->floor_tol     = 1e-9;
   st->floor_force_tol = 1e-6;
   st->domain_backtrack = PETSC_TRUE;
   st->max_steps     = 100000;
   st->predictor     = PREDICTOR_AUTO;
   st->chatter_check = PETSC_TRUE;
+  st->pred_contact  = PETSC_TRUE;
+  st->step_depth    = 1;
   st->keep_contact  = 1;
   st->r_true0       = -1;
   st->kink_predictor = PREDICTOR_AUTO;
@@ -84,6 +86,10 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     const char *kc[] = {"none", "frictionless", "moving", "all", "KeepContact", "KEEP_", NULL};
     PetscCall(PetscOptionsEList("-newton_keep_contact", "The first Newton iteration of a step (its residual and Jacobian) holds the nodes pressed in the committed state in contact (bilateral) whatever the predictor's gap, the line search and later iterations use the true law: on no tool, on frictionless tools, on those and the frictional tools moved by the step's prescribed displacement (moving), or on those and the frictional tools at rest in the step (all; never a force-driven tool); a held node on a frictional tool keeps the friction of its committed force and a tangential spring anchored at the predictor, and nodes entering contact have no friction in that iteration; default frictionless, moving with -contact_augmented", "doc/performance.md", kc, 4, kc[st->keep_contact], &st->keep_contact, &st->keep_contact_set));
   }
+  PetscCall(PetscOptionsBool("-load_predictor_contact", "The predictor of a step moves every node pressed on a tool in the committed state along the tool's normal to its committed gap (the extrapolation or the tangent leave lightly pressed nodes open or pushed in)", NULL, st->pred_contact, &st->pred_contact, NULL));
+  PetscCall(PetscOptionsReal("-newton_step_depth", "Energy line search: the Newton step is shortened so that no slave node goes deeper into its tool than this many element sizes normal to the contact face (0: no limit)", NULL, st->step_depth, &st->step_depth, NULL));
+  PetscCheck(st->step_depth >= 0, comm, PETSC_ERR_USER_INPUT, "-newton_step_depth %g must be >= 0", (double)st->step_depth);
+  PetscCall(PetscOptionsBool("-newton_monitor_contact", "One line per Newton iteration: |R| against the internal forces' scale, and per tool the nodes that entered and left contact in the iteration (with the largest normal force among them), the nodes pressed, the largest penetration", NULL, st->monitor, &st->monitor, NULL));
   PetscCall(PetscOptionsBool("-contact_chatter_check", "Fail (and cut) a step whose last Newton iteration still changed the set of nodes in contact", NULL, st->chatter_check, &st->chatter_check, NULL));
   PetscCall(PetscOptionsBool("-load_kinks", "Land a step on every kink of every curve of the process time (tool paths and amplitudes, condition amplitudes) and never extrapolate across one (default: with stages or an amplitude curve)", NULL, st->kinks, &st->kinks, &st->kinks_set));
   {
@@ -274,6 +280,52 @@ static PetscErrorCode TangentPredictor(Stepper *st, Problem *pb, Vec R, Vec W, P
   PetscFunctionReturn(0);
 }
 
+/* -newton_monitor_contact: |R|, its ratio to the internal forces' scale, and per tool the status
+   changes of the iteration (the last evaluation is the accepted iterate's) */
+static PetscErrorCode MonitorContact(Stepper *st, PetscInt it, PetscReal fnorm)
+{
+  PetscReal          F  = 0;
+  const PetscInt     nt = ContactNumTools(st->pb->contact);
+  ContactToolStatus *ts;
+  char               line[1024];
+  size_t             l;
+
+  PetscFunctionBeginUser;
+  PetscCall(ProblemForceScale(st->pb, &F));
+  PetscCall(PetscSNPrintf(line, sizeof(line), "    %2d |R| %.3e  |R|/F %.2e", (int)it, (double)fnorm, (double)(F > 0 ? fnorm / F : 0)));
+  {
+    Vec       R;
+    PetscReal v, x[3];
+    PetscInt  nd, cp;
+    PetscCall(SNESGetFunction(st->pb->snes, &R, NULL, NULL));
+    PetscCall(ProblemResidualPeak(st->pb, R, &v, &nd, &cp, x));
+    PetscCall(PetscStrlen(line, &l));
+    PetscCall(PetscSNPrintf(line + l, sizeof(line) - l, "  peak %.2e at node %d %c (%.4g, %.4g, %.4g)", (double)v, (int)nd, "xyz"[cp], (double)x[0], (double)x[1], (double)x[2]));
+  }
+  if (st->pb->ntu) { /* the tool unknowns' rows */
+    Vec       R;
+    PetscReal d[3 * 64], m = 0;
+    PetscCall(SNESGetFunction(st->pb->snes, &R, NULL, NULL));
+    PetscCall(ProblemGetToolValues(st->pb, R, d));
+    for (PetscInt k = 0; k < st->pb->ntu; k++) m = PetscMax(m, PetscAbsReal(d[k]));
+    PetscCall(PetscStrlen(line, &l));
+    PetscCall(PetscSNPrintf(line + l, sizeof(line) - l, "  tools' rows %.2e", (double)m));
+  }
+  if (nt) {
+    PetscCall(PetscMalloc1(nt, &ts));
+    PetscCall(ContactStatusChanges(st->pb->contact, ts));
+    for (PetscInt t = 0; t < nt; t++) {
+      const Tool *tl;
+      PetscCall(ContactGetTool(st->pb->contact, t, &tl));
+      PetscCall(PetscStrlen(line, &l));
+      PetscCall(PetscSNPrintf(line + l, sizeof(line) - l, "  %s +%d -%d (%.1e) ss %d on %d pen %.1e", tl->name, (int)ts[t].nin, (int)ts[t].nout, (double)ts[t].fchange, (int)ts[t].nslip, (int)ts[t].nactive, (double)ts[t].pen));
+    }
+    PetscCall(PetscFree(ts));
+  }
+  PetscCall(PetscPrintf(st->pb->comm, "%s\n", line));
+  PetscFunctionReturn(0);
+}
+
 /* PETSc's convergence test, and a stall test: the iteration stops as diverged when |R| has not
    fallen below stall_factor times its value stall_its iterations earlier (a step whose active set
    or stick/slip pattern keeps Newton from making progress is cut at once instead of running to the
@@ -310,6 +362,7 @@ static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, P
     pb->kry_max = PetscMax(pb->kry_max, kits);
   }
   if (it < 256) pb->fnorm_hist[it] = fnorm;
+  if (pb->monitor) PetscCall(MonitorContact(pb, it, fnorm));
   if (pb->kry_on && pb->ksp_target > 0) {
     /* inexact Newton's tail: the next linear solve need only bring |R| well below the Newton
        tolerance tol, not a further factor -ksp_rtol below |R| (at the last iteration |R| is often
@@ -357,6 +410,7 @@ static PetscErrorCode LineSearchPreCheck(SNESLineSearch ls, Vec X, Vec Y, PetscB
     PetscBool bt;
     PetscReal fnorm;
     PetscCall(PetscObjectTypeCompare((PetscObject)ls, SNESLINESEARCHBT, &bt));
+    bt = bt || NewtonLineSearchEnergy(st->nls);
     PetscCall(SNESLineSearchGetNorms(ls, NULL, &fnorm, NULL));
     st->pb->trial_norm = (bt && fnorm > 0 && PetscIsNormalReal(fnorm)) ? 2 * fnorm : 0;
   }
@@ -376,6 +430,26 @@ static PetscErrorCode TrialEnd(SNESLineSearch ls, Vec X, Vec Y, Vec W, PetscBool
   (void)W;
   *changed_y = *changed_w = PETSC_FALSE;
   if (st->pb) st->pb->trial_norm = 0;
+  PetscFunctionReturn(0);
+}
+
+/* the energy line search's step limit: no slave node carried deeper than an element into a tool
+   (ContactStepLimit) */
+static PetscErrorCode StepLimit(void *ctx, Vec X, Vec Y, PetscReal *lmax)
+{
+  Stepper           *st = (Stepper *)ctx;
+  Problem           *pb = st->pb;
+  const PetscScalar *u;
+  PetscReal          yt[3 * 64];
+
+  PetscFunctionBeginUser;
+  *lmax = PETSC_MAX_REAL;
+  if (!ContactNumTools(pb->contact) || !(st->step_depth > 0)) PetscFunctionReturn(0);
+  PetscCall(ProblemGetToolValues(pb, Y, yt));
+  PetscCall(ProblemLocalWithBC(pb, X, pb->lambda));
+  PetscCall(VecGetArrayRead(pb->Uloc, &u));
+  PetscCall(ContactStepLimit(pb->contact, u, pb->lambda, Y, pb->ntu ? yt : NULL, st->step_depth, lmax));
+  PetscCall(VecRestoreArrayRead(pb->Uloc, &u));
   PetscFunctionReturn(0);
 }
 
@@ -450,6 +524,8 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   st->pb = pb;
+  PetscCall(NewtonLineSearchSetFailureCounter(st->nls, &pb->ntrial_fail));
+  PetscCall(NewtonLineSearchSetStepLimit(st->nls, StepLimit, st));
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(VecDuplicate(pb->U, &R));
@@ -590,6 +666,17 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       }
       pb->lambda     = lam_t;
       pb->bad_status = 0;
+      if (contact && st->pred_contact && step > 0) {
+        /* -load_predictor_contact: the pressed nodes keep their committed gaps */
+        const PetscScalar *u;
+        PetscInt           nmv;
+        PetscReal          dmx;
+        PetscCall(ProblemLocalWithBC(pb, pb->U, lam_t));
+        PetscCall(VecGetArrayRead(pb->Uloc, &u));
+        PetscCall(ContactProjectPressed(pb->contact, u, lam_t, pb->U, &nmv, &dmx));
+        PetscCall(VecRestoreArrayRead(pb->Uloc, &u));
+        PetscCall(PetscInfo(snes, "predictor: %d pressed nodes moved to their committed gaps, by at most %g\n", (int)nmv, (double)dmx));
+      }
       PetscCall(SeedFrames(pb, pb->U, lam_t));
       its             = 0;
       its_max         = 0;

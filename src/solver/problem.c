@@ -258,6 +258,49 @@ PetscErrorCode ProblemForceScale(Problem *pb, PetscReal *F)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ProblemResidualPeak(Problem *pb, Vec F, PetscReal *val, PetscInt *node, PetscInt *comp, PetscReal x[3])
+{
+  const Mesh        *m = pb->mesh;
+  Vec                Fb, Fl;
+  const PetscScalar *f;
+  struct {
+    PetscReal v;
+    PetscInt  r;
+  } loc = {-1, 0}, glob;
+  PetscReal buf[5] = {0, 0, 0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(m->dm, &Fl));
+  PetscCall(VecZeroEntries(Fl));
+  PetscCall(BodyGet(pb, F, pb->Fbv, PETSC_TRUE, &Fb));
+  PetscCall(DMGlobalToLocal(m->dm, Fb, INSERT_VALUES, Fl));
+  PetscCall(BodyRestore(pb, F, pb->Fbv, PETSC_TRUE));
+  PetscCall(VecGetArrayRead(Fl, &f));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    if (!m->vowned[v]) continue;
+    for (int k = 0; k < 3; k++) {
+      const PetscReal a = PetscAbsReal(PetscRealPart(f[m->vloff[v] + k]));
+      if (a > loc.v) {
+        loc.v  = a;
+        buf[0] = (PetscReal)m->node_id[v];
+        buf[1] = k;
+        for (int j = 0; j < 3; j++) buf[2 + j] = m->X[3 * v + j];
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(Fl, &f));
+  PetscCall(DMRestoreLocalVector(m->dm, &Fl));
+  PetscCallMPI(MPI_Allreduce(&loc.v, &glob.v, 1, MPIU_REAL, MPIU_MAX, pb->comm));
+  loc.r = loc.v == glob.v ? pb->rank : pb->size;
+  PetscCallMPI(MPI_Allreduce(&loc.r, &glob.r, 1, MPIU_INT, MPI_MIN, pb->comm));
+  PetscCallMPI(MPI_Bcast(buf, 5, MPIU_REAL, (PetscMPIInt)glob.r, pb->comm));
+  *val  = glob.v;
+  *node = (PetscInt)buf[0];
+  *comp = (PetscInt)buf[1];
+  for (int j = 0; j < 3; j++) x[j] = buf[2 + j];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ProblemLocalWithBC(Problem *pb, Vec U, PetscReal lambda)
 {
   PetscScalar *u;
