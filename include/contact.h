@@ -135,7 +135,8 @@ PetscErrorCode ContactAugmentSoften(Contact c, PetscBool *softened, PetscReal *f
 /* the contact status and normal force of every slave node at the current iterate */
 PetscErrorCode ContactRecordActive(Contact c);
 /* The predictor of a step, made consistent with the committed contact: every node pressed in the
-   committed state on a present tool is moved along the tool's normal at the
+   committed state on a present tool at rest or driven by force (not on one the step moves by a
+   prescribed displacement: the extrapolation moves the whole body with it) is moved along the tool's normal at the
    predicted position (u: local, with boundary values) until its gap is the committed one; the
    correction is added to the global U (constrained components dropped), and skipped where it
    exceeds a tenth of the element size normal to the contact face. Collective. */

@@ -19,10 +19,14 @@
 typedef struct {
   double KN, KT, mu;
   double delta; /* > 0: the normal bracket smoothed over gaps -delta..delta (-contact_gap_smoothing) */
-  double reg;   /* > 0: the normal force regularised on the penetration side over 0..reg
-                   (-contact_regularization): t_N = x^2/(2w) for 0 < x < w, x - w/2 beyond,
-                   x = lN + K_N p, w = K_N reg; zero at every positive gap (x <= 0) */
+  double reg;   /* > 0: the normal bracket regularised over a band of penetrations (-contact_regularization):
+                   with x = lN + K_N p and b = K_N reg, a = CONTACT_REG_GAP b,
+                   t_N = (x + a)^2 / (2 (a + b)) for -a < x < b, x - (b - a)/2 beyond, 0 below -a
+                   (C1; no force at gaps beyond CONTACT_REG_GAP reg, slope a/(a+b) at x = 0) */
 } ContactLaw;
+
+/* the regularisation's reach on the open side, as a fraction of its width (ContactLaw.reg) */
+#define CONTACT_REG_GAP 0.1
 
 #define CONTACT_OPEN  0
 #define CONTACT_STICK 1

@@ -124,7 +124,6 @@ struct _p_Contact {
   PetscReal     hmin;          /* smallest element size normal to the contact faces (0: unknown) */
   PetscBool     reg_auto;      /* -contact_regularization auto: reg_rel times the node's element size (automatic penalty) */
   PetscReal     reg_rel;
-  PetscBool     pred_open;     /* (experiment) the predictor also moves unpressed penetrating nodes out */
   PetscReal    *hn;            /* ns: the element size normal to the contact faces at each node (NULL: unknown) */
   PetscReal     tol;           /* the penetration tolerance of the augmentation              */
   PetscReal    *lam;           /* ns*3: multipliers of the current Newton solve (lN, lT1, lT2) */
@@ -593,7 +592,6 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     if (!sa && !sr) c->aug_tol_rel = 1e-2;
   }
   PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient mu", NULL, c->law.mu, &c->law.mu, NULL));
-  PetscCall(PetscOptionsBool("-contact_predictor_open", "experiment", NULL, c->pred_open, &c->pred_open, NULL));
   {
     char      buf[64] = "auto";
     PetscBool set;
@@ -761,7 +759,12 @@ static inline ContactLaw NodeLaw(const struct _p_Contact *contact, PetscInt i, P
     law.KN *= contact->mesh->varea[contact->slave[i]];
     law.KT *= contact->mesh->varea[contact->slave[i]];
   }
-  if (contact->reg_auto) law.reg = (tc->kauto && contact->hn) ? contact->reg_rel * contact->hn[i] : 0;
+  if (contact->reg_auto) {
+    /* a width of reg_rel times the element size, at most the augmented Lagrangian's penetration
+       tolerance (its converged penetration is up to half the width) */
+    law.reg = (tc->kauto && contact->hn) ? contact->reg_rel * contact->hn[i] : 0;
+    if (contact->aug && contact->tol > 0) law.reg = PetscMin(law.reg, contact->tol);
+  }
   if (contact->kscale != 1) { /* grown by the augmentation within the current step */
     law.KN *= contact->kscale;
     law.KT *= contact->kscale;
@@ -1102,7 +1105,7 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
          question, doc/performance.md) */
       const double lN    = contact->lam_tool[i] == tool ? contact->lam[3 * i] : 0;
       const ContactLaw nl = NodeLaw(contact, i, tool);
-      const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta) || Held(contact, i, tool, nl.mu)) ? PETSC_TRUE : PETSC_FALSE;
+      const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta) || (nl.reg > 0 && lN - nl.KN * pr.gap > -CONTACT_REG_GAP * nl.KN * nl.reg) || Held(contact, i, tool, nl.mu)) ? PETSC_TRUE : PETSC_FALSE;
       double *s = contact->seed + 3 * i, *sn = contact->seedn + 3 * i;
       if (in && contact->has_seed[i]) {
         double r[3];
@@ -1178,7 +1181,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
     tTn[1] = contact->lam[3 * i + 2];
   }
   PetscBool bilateral = PETSC_FALSE;
-  if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0) && !(law.delta > 0 && lN - law.KN * pr.gap > -law.KN * law.delta)) { /* open (the kernel's test) */
+  if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0) && !(law.delta > 0 && lN - law.KN * pr.gap > -law.KN * law.delta) && !(law.reg > 0 && lN - law.KN * pr.gap > -CONTACT_REG_GAP * law.KN * law.reg)) { /* open (the kernel's test) */
     if (!Held(contact, i, tool, law.mu)) return 0;
     bilateral = PETSC_TRUE;
   }
@@ -1810,14 +1813,14 @@ PetscErrorCode ContactProjectPressed(Contact contact, const PetscScalar *u, Pets
     double              dg;
     NodePosition(contact, i, u, y);
     if (cc->status != CONTACT_OPEN && cc->tN > 0 && cc->tool >= 0 && !contact->tools[cc->tool].absent) {
+      double shc[3];
       CurShift(contact, cc->tool, lambda, sh);
+      CommittedShift(contact, cc->tool, shc);
+      /* a tool moved by its prescribed displacement carries its nodes through the extrapolation of
+         the body, which moves the whole thickness; the projection would move the contact face alone */
+      if (!contact->tc[cc->tool].forced && (sh[0] != shc[0] || sh[1] != shc[1] || sh[2] != shc[2])) continue;
       if (ToolProject(&contact->tools[cc->tool], sh, y, contact->search, &pr)) continue;
       dg = cc->gap - pr.gap;
-    } else if (contact->pred_open) {
-      /* not pressed in the committed state, pushed into a tool by the predictor: to its surface */
-      const PetscInt t = PairNode(contact, i, y, lambda, &pr);
-      if (t < 0 || !(pr.gap < 0)) continue;
-      dg = -pr.gap;
     } else continue;
     if (!(PetscAbsReal(dg) <= 0.1 * (contact->hn ? contact->hn[i] : contact->hmin))) continue;
     for (int k = 0; k < 3; k++) {

@@ -131,10 +131,13 @@ int ContactNodeEvalAug(const ContactLaw *law, double lN, double g, const double 
     *tN   = x >= w ? x : (x + w) * (x + w) / (4 * w);
     lw.KN = x >= w ? law->KN : law->KN * (x + w) / (2 * w);
   } else if (law->reg > 0) {
-    const double x = lN - law->KN * g, w = law->KN * law->reg;
-    if (!(x > 0)) return CONTACT_OPEN;
-    *tN   = x >= w ? x - 0.5 * w : x * x / (2 * w);
-    lw.KN = x >= w ? law->KN : law->KN * x / w;
+    /* the band -a < x < b: t_N = (x + a)^2 / (2 (a + b)), dt_N/dx = (x + a)/(a + b) (C1: 0 and 0 at
+       x = -a, (a + b)/2 and 1 at x = b); beyond it x - (b - a)/2. A node touching at zero force
+       keeps the stiffness a/(a+b) K_N, and only nodes within a/K_N of the tool carry force at a gap */
+    const double x = lN - law->KN * g, b = law->KN * law->reg, a = CONTACT_REG_GAP * b;
+    if (!(x > -a)) return CONTACT_OPEN;
+    *tN   = x >= b ? x - 0.5 * (b - a) : (x + a) * (x + a) / (2 * (a + b));
+    lw.KN = x >= b ? law->KN : law->KN * (x + a) / (a + b);
   } else {
     if (g > 0 && !(lN - law->KN * g > 0)) return CONTACT_OPEN;
     *tN = lN > 0 ? lN + law->KN * p : law->KN * p;
