@@ -153,6 +153,7 @@ typedef struct {
   PetscInt  nactive;    /* nodes in contact now */
   PetscInt  nslip;      /* nodes in contact before and now that changed between stick and slip */
   PetscReal pen, fmax;  /* the largest penetration and normal force now */
+  PetscReal penh;       /* the largest penetration now over the node's element size normal to the face */
 } ContactToolStatus;
 PetscErrorCode ContactStatusChanges(Contact c, ContactToolStatus *ts);
 /* nodes that entered or left contact in the last Newton iteration with a significant normal

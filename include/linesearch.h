@@ -51,7 +51,10 @@ PetscErrorCode NewtonLineSearchSetFailureCounter(NewtonLineSearch nls, const Pet
 /* the longest step x - lambda y along the Newton direction that the geometry allows (lmax; the
    energy search starts there when it is below 1) */
 PetscErrorCode NewtonLineSearchSetStepLimit(NewtonLineSearch nls, PetscErrorCode (*limit)(void *, Vec, Vec, PetscReal *), void *ctx);
-/* relaxed steps taken, those of them reverted, and residual evaluations of the line search */
+/* the watchdog's relaxed steps, those of them reverted, and its residual evaluations */
 PetscErrorCode NewtonLineSearchGetCounts(NewtonLineSearch nls, PetscInt *relaxed, PetscInt *reverted, PetscInt *trials);
+/* the energy search's searches, residual evaluations, searches whose first trial the step limit
+   shortened, and searches that fell back to backtracking on |R| (not a descent direction) */
+PetscErrorCode NewtonLineSearchGetEnergyCounts(NewtonLineSearch nls, PetscInt *searches, PetscInt *trials, PetscInt *limited, PetscInt *fallback);
 PetscErrorCode NewtonLineSearchDestroy(NewtonLineSearch *nls);
 #endif

@@ -33,7 +33,7 @@ static int node_on_sphere(const ContactLaw *law, const double c[3], double Rs, c
 
 int main(void)
 {
-  ContactLaw law = {1e5, 5e3, 0.15, 0};
+  ContactLaw law = {1e5, 5e3, 0.15, 0, 0};
   srand(4321);
 
   /* return map: stick, slip, the cone, separation */
@@ -252,6 +252,51 @@ int main(void)
         TU_CHECK(worst < 1e-6 && jump < 1e-6 && tN1 == tN2 && R1[0] == R2[0] && R1[1] == R2[1] && R1[2] == R2[2], "gap smoothing: tangent vs finite differences %.2e (relative to K_N) in and beyond the band, stick and slip, with and without a multiplier; t_N continuous at the band's ends (%.1e of K_N delta); the plain law beyond the band", worst, jump);
       }
     }
+    /* the regularised law (law.reg > 0, -contact_regularization): with x = lN + K_N p, b = K_N reg,
+       a = CONTACT_REG_GAP b: t_N = (x + a)^2 / (2 (a + b)) in the band -a < x < b, x - (b - a)/2
+       beyond, 0 below -a (open). Its values in closed form at the band's ends and at touching,
+       the slope K_N a / (a + b) = K_N / 11 at touching, the tangent against central differences in
+       and beyond the band (stick and slip, with and without a multiplier), open beyond a gap of
+       CONTACT_REG_GAP reg */
+    {
+      ContactLaw   lr = law;
+      double       worst = 0, vals = 0, slope;
+      const double n[3] = {0, 0.6, 0.8}, s[3] = {1, 0, 0}, tTn[2] = {30, -20}, ds0[3] = {0, 0, 0};
+      lr.reg = 1e-3;
+      const double b = lr.KN * lr.reg, a = CONTACT_REG_GAP * b;
+      for (int c2 = 0; c2 < 14; c2++) {
+        const double g = 1.5e-4 - c2 * 1.7e-4, lN = (c2 % 3 == 0) ? 20.0 : 0.0, dsx = (c2 % 2) ? 1e-5 : 1e-2;
+        const double ds[3] = {dsx, -0.5 * dsx, 0.3 * dsx};
+        double       R[3], K[9], t1[3], tT[2], tN;
+        if (ContactNodeEvalAug(&lr, lN, g, n, NULL, s, tTn, ds, R, K, t1, &tN, tT) == CONTACT_OPEN) continue;
+        for (int j = 0; j < 3; j++) {
+          const double h = 1e-9;
+          double       Rp[3], Rm[3], tt1[3], ttT[2], ttN;
+          const double dgp = h * n[j], dsp[3] = {ds[0] + (j == 0) * h, ds[1] + (j == 1) * h, ds[2] + (j == 2) * h}, dsm[3] = {ds[0] - (j == 0) * h, ds[1] - (j == 1) * h, ds[2] - (j == 2) * h};
+          ContactNodeEvalAug(&lr, lN, g + dgp, n, NULL, s, tTn, dsp, Rp, NULL, tt1, &ttN, ttT);
+          ContactNodeEvalAug(&lr, lN, g - dgp, n, NULL, s, tTn, dsm, Rm, NULL, tt1, &ttN, ttT);
+          for (int i = 0; i < 3; i++) worst = fmax(worst, fabs((Rp[i] - Rm[i]) / (2 * h) - K[3 * i + j]) / lr.KN);
+        }
+      }
+      {
+        /* closed forms (lN = 0, x = K_N p): touching, the band's inner end p = reg, beyond it,
+           the open side's end and past it */
+        double       R[3], t1[3], tT[2], tN[5], tp, tm;
+        const double gs[5] = {0, -lr.reg, -3 * lr.reg, CONTACT_REG_GAP * lr.reg * (1 - 1e-9), CONTACT_REG_GAP * lr.reg * (1 + 1e-9)};
+        const double want[5] = {a * a / (2 * (a + b)), b - 0.5 * (b - a), 3 * b - 0.5 * (b - a), 0, 0};
+        int          st[5];
+        for (int k = 0; k < 5; k++) {
+          st[k] = ContactNodeEvalAug(&lr, 0.0, gs[k], n, NULL, s, tTn, ds0, R, NULL, t1, &tN[k], tT);
+          if (st[k] == CONTACT_OPEN) tN[k] = 0;
+          vals = fmax(vals, fabs(tN[k] - want[k]) / b);
+        }
+        ContactNodeEvalAug(&lr, 0.0, -1e-9, n, NULL, s, tTn, ds0, R, NULL, t1, &tp, tT);
+        ContactNodeEvalAug(&lr, 0.0, 1e-9, n, NULL, s, tTn, ds0, R, NULL, t1, &tm, tT);
+        slope = (tp - tm) / (2e-9 * lr.KN);
+        TU_CHECK(worst < 1e-6 && vals < 1e-9 && st[4] == CONTACT_OPEN && st[0] != CONTACT_OPEN && fabs(slope - 1.0 / 11) < 1e-6,
+                 "regularised law: tangent vs finite differences %.2e (relative to K_N) in and beyond the band, stick and slip, with and without a multiplier; t_N at touching, the band's ends and beyond against the closed form to %.1e of K_N reg; slope at touching %.6f of K_N (1/11); open beyond a gap of %g reg", worst, vals, slope, CONTACT_REG_GAP);
+      }
+    }
     /* Uzawa on one node pushed by a spring k_s = K_N into a rigid wall: lN <- lN + K_N p drives
        the penetration to zero and lN to the exact contact force */
     {
@@ -279,7 +324,7 @@ int main(void)
     const double c[3] = {0, 0, 0}, Rs = 1.0;
     const int    N = 400;
     double       seed[3] = {0, 1, 0}, tTn[2] = {0, 0}, yprev[3], t1prev[3] = {0, 0, 0}, worstjump = 0, worstorth = 0, worstopp = 1;
-    ContactLaw   lw = {1e4, 1e3, 0.3, 0};
+    ContactLaw   lw = {1e4, 1e3, 0.3, 0, 0};
     for (int k = 0; k <= N; k++) {
       /* node sliding in the x-z plane, slightly inside the sphere */
       const double th = 0.5 * 3.14159265358979323846 * k / N, r = Rs - 1e-3;

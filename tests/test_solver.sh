@@ -103,8 +103,9 @@ compare "$OUT/beam1/history.csv" "$OUT/gamg2/history.csv" 8 "clamped beam: GMRES
 # 9. the large-sheet solver (cases/solver_amg_sheet.opts: BiCGStab + BoomerAMG, the Jacobian in
 #    hypre's format) on the whole blank with friction, at 1 and 2 ranks, against LU: the same
 #    histories (the Newton tolerances decide, not the linear solver's), the Krylov iterations per
-#    step on the progress line and at most 50 in any Newton iteration
-DISK="-options_file cases/hemisphere_friction_disk.opts -blank_core_cells 4 -blank_radial_cells 10 -blank_layers 2 -tool_punch_motion 0,0,3 -load_steps 3 -load_dt_max 0.34 -output_interval 0"
+#    step on the progress line and at most 50 in any Newton iteration; Newton's tolerance is
+#    -snes_rtol alone (-newton_force_tol 0), so that the histories compare the solvers to 6 digits
+DISK="-newton_force_tol 0 -options_file cases/hemisphere_friction_disk.opts -blank_core_cells 4 -blank_radial_cells 10 -blank_layers 2 -tool_punch_motion 0,0,3 -load_steps 3 -load_dt_max 0.34 -output_interval 0"
 atrito 1 disk_lu $DISK
 for np in 1 2; do
   atrito $np disk_amg$np $DISK -options_file cases/solver_amg_sheet.opts &&

@@ -595,7 +595,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
   {
     char      buf[64] = "auto";
     PetscBool set;
-    PetscCall(PetscOptionsString("-contact_regularization", "Penetration over which the normal contact force starts quadratically (C1: no force at any positive gap, the full penalty beyond it; 0: the plain bracket), a length, or auto: -contact_regularization_relative times the element size normal to the contact face at each node with the automatic penalty, 0 with a given one", "doc/contact.md", buf, buf, sizeof(buf), &set));
+    PetscCall(PetscOptionsString("-contact_regularization", "Width of the band over which the normal contact force starts quadratically (C1; it reaches a tenth of the width to the open side, the full penalty beyond the band; 0: the plain bracket), a length, or auto: -contact_regularization_relative times the element size normal to the contact face at each node with the automatic penalty, 0 with a given one", "doc/contact.md", buf, buf, sizeof(buf), &set));
     PetscCall(PetscStrcmp(buf, "auto", &c->reg_auto));
     if (!c->reg_auto) {
       char *end;
@@ -858,7 +858,8 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
   PetscCall(PetscFree(mark));
   PetscCall(PetscFree(tmark));
   for (PetscInt t = 0; t < nt; t++) contact->kanyauto = contact->kanyauto || contact->tc[t].kauto;
-  if (contact->kanyauto || contact->aug) { /* element sizes: the automatic penalty, the relative tolerance */
+  if (m->varea || contact->kanyauto || contact->aug) { /* element sizes: the automatic penalty, the relative tolerance, the
+                                                           regularisation, the step limit, the predictor's projection */
     PetscReal *h, hmin = PETSC_MAX_REAL;
     PetscInt   nzero = 0;
     PetscCheck(m->varea, contact->comm, PETSC_ERR_PLIB, "contact: the mesh carries no tributary areas");
@@ -1877,14 +1878,16 @@ PetscErrorCode ContactStatusChanges(Contact contact, ContactToolStatus *ts)
   PetscReal     *cnt, *mx;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscCalloc2(4 * nt + 1, &cnt, 3 * nt + 1, &mx));
+  PetscCall(PetscCalloc2(4 * nt + 1, &cnt, 4 * nt + 1, &mx));
   for (PetscInt i = 0; i < contact->ns; i++) {
     const ContactState *s   = &contact->cst_t[i];
     const PetscInt      now = s->status != CONTACT_OPEN ? s->tool : -1, was = contact->tool_prev[i];
     if (now >= 0) {
+      const PetscReal h = contact->hn ? contact->hn[i] : contact->hmin;
       cnt[3 * now + 2] += 1;
       mx[3 * now + 1] = PetscMax(mx[3 * now + 1], -s->gap);
       mx[3 * now + 2] = PetscMax(mx[3 * now + 2], s->tN);
+      if (h > 0) mx[3 * nt + now] = PetscMax(mx[3 * nt + now], -s->gap / h);
     }
     if (now == was) {
       if (now >= 0 && s->status != contact->status_prev[i]) cnt[3 * nt + now] += 1;
@@ -1900,7 +1903,7 @@ PetscErrorCode ContactStatusChanges(Contact contact, ContactToolStatus *ts)
     }
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, cnt, (PetscMPIInt)(4 * nt), MPIU_REAL, MPIU_SUM, contact->comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, (PetscMPIInt)(3 * nt), MPIU_REAL, MPIU_MAX, contact->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, (PetscMPIInt)(4 * nt), MPIU_REAL, MPIU_MAX, contact->comm));
   for (PetscInt t = 0; t < nt; t++) {
     ts[t].nin     = (PetscInt)cnt[3 * t];
     ts[t].nout    = (PetscInt)cnt[3 * t + 1];
@@ -1909,6 +1912,7 @@ PetscErrorCode ContactStatusChanges(Contact contact, ContactToolStatus *ts)
     ts[t].fchange = mx[3 * t];
     ts[t].pen     = mx[3 * t + 1];
     ts[t].fmax    = mx[3 * t + 2];
+    ts[t].penh    = mx[3 * nt + t];
   }
   PetscCall(PetscFree2(cnt, mx));
   PetscFunctionReturn(0);

@@ -119,7 +119,7 @@ PetscErrorCode StepperSetUp(Stepper *st, BCs *bcs, Contact contact)
   for (PetscInt b = 0; b < bcs->n; b++)
     if (bcs->bc[b].amp.n > 0) amp = PETSC_TRUE;
   for (PetscInt t = 0; t < ContactNumTools(contact); t++) {
-    const Tool *tl;
+    const Tool *tl = NULL;
     PetscCall(ContactGetTool(contact, t, &tl));
     if (tl->amp.n > 0) amp = PETSC_TRUE;
   }
@@ -140,7 +140,7 @@ static PetscReal NextKink(const Stepper *st, PetscReal t)
 {
   PetscReal k = BCNextKink(st->bcs, t);
   for (PetscInt i = 0; i < ContactNumTools(st->contact); i++) {
-    const Tool *tl;
+    const Tool *tl = NULL;
     if (ContactGetTool(st->contact, i, &tl)) continue;
     k = PetscMin(k, (PetscReal)ToolNextKink(tl, t));
   }
@@ -199,7 +199,7 @@ static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < ContactNumTools(st->contact); i++) {
-    const Tool *tl;
+    const Tool *tl = NULL;
     PetscCall(ContactGetTool(st->contact, i, &tl));
     if (announce && !s->tool_on[i] && !tl->absent) {
       ContactToolResult r;
@@ -229,7 +229,7 @@ static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool
     /* the watchdog line search in a release by nodal forces without contact (linesearch.h) */
     PetscBool contact = PETSC_FALSE;
     for (PetscInt i = 0; i < ContactNumTools(st->contact); i++) {
-      const Tool *tl;
+      const Tool *tl = NULL;
       PetscCall(ContactGetTool(st->contact, i, &tl));
       if (!tl->absent) contact = PETSC_TRUE;
     }
@@ -315,7 +315,7 @@ static PetscErrorCode MonitorContact(Stepper *st, PetscInt it, PetscReal fnorm)
     PetscCall(PetscMalloc1(nt, &ts));
     PetscCall(ContactStatusChanges(st->pb->contact, ts));
     for (PetscInt t = 0; t < nt; t++) {
-      const Tool *tl;
+      const Tool *tl = NULL;
       PetscCall(ContactGetTool(st->pb->contact, t, &tl));
       PetscCall(PetscStrlen(line, &l));
       PetscCall(PetscSNPrintf(line + l, sizeof(line) - l, "  %s +%d -%d (%.1e) ss %d on %d pen %.1e", tl->name, (int)ts[t].nin, (int)ts[t].nout, (double)ts[t].fchange, (int)ts[t].nslip, (int)ts[t].nactive, (double)ts[t].pen));
@@ -374,9 +374,14 @@ static PetscErrorCode NewtonConverged(SNES snes, PetscInt it, PetscReal xnorm, P
     PetscReal rt, atol, rtol, stol;
     PetscInt  maxit, maxf;
     PetscCall(SNESGetKSP(snes, &ksp));
-    if (it == 0) {
+    if (it == 0) { /* the largest of Newton's tolerances (-snes_atol, -snes_rtol, -newton_force_tol) */
       PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, &maxf));
       pb->newton_tol = PetscMax(atol, rtol * fnorm);
+      if (pb->force_tol > 0) {
+        PetscReal F = 0;
+        PetscCall(ProblemForceScale(pb->pb, &F));
+        pb->newton_tol = PetscMax(pb->newton_tol, pb->force_tol * F);
+      }
     }
     rt = pb->ksp_rtol0;
     if (*reason == SNES_CONVERGED_ITERATING && fnorm > 0) rt = PetscMax(rt, PetscMin(0.5, pb->ksp_target * pb->newton_tol / fnorm));
@@ -491,6 +496,54 @@ static const char *FailureCause(const Stepper *st, const Problem *pb, SNESConver
   else if (reason == SNES_DIVERGED_MAX_IT) snprintf(buf, len, "Newton did not converge in the allowed iterations");
   else snprintf(buf, len, "Newton diverged (%s)", SNESConvergedReasons[reason]);
   return buf;
+}
+
+/* a failed Newton solve explained (collective; written to buf, empty where there is nothing to
+   add): |R| against the internal forces'
+   scale, where its peak is, and the tool whose contact changed most at the last iteration, with
+   the nodes that entered, left or changed between stick and slip, its deepest penetration (also
+   in element sizes) and largest normal force, and what to try */
+static PetscErrorCode ExplainFailure(Stepper *st, Problem *pb, char *buf, size_t len)
+{
+  const PetscInt     nt = ContactNumTools(pb->contact);
+  PetscReal          F = 0, fnorm, v, x[3];
+  PetscInt           nd, cp, worst = -1, wch = -1;
+  Vec                R;
+  ContactToolStatus *ts;
+  size_t             l;
+
+  PetscFunctionBeginUser;
+  buf[0] = 0;
+  PetscCall(SNESGetFunction(pb->snes, &R, NULL, NULL));
+  PetscCall(VecNorm(R, NORM_2, &fnorm));
+  if (PetscIsInfOrNanReal(fnorm)) PetscFunctionReturn(0);
+  PetscCall(ProblemForceScale(pb, &F));
+  PetscCall(ProblemResidualPeak(pb, R, &v, &nd, &cp, x));
+  PetscCall(PetscSNPrintf(buf, len, "|R| %.3g (%.2g of the forces' scale), largest at node %d %c", (double)fnorm, (double)(F > 0 ? fnorm / F : 0), (int)nd, "xyz"[cp]));
+  if (!nt) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(nt, &ts));
+  PetscCall(ContactStatusChanges(pb->contact, ts));
+  for (PetscInt t = 0; t < nt; t++) {
+    const PetscInt ch = ts[t].nin + ts[t].nout + ts[t].nslip;
+    if (ch > wch || (ch == wch && worst >= 0 && ts[t].penh > ts[worst].penh)) {
+      wch   = ch;
+      worst = t;
+    }
+  }
+  if (worst >= 0 && (wch > 0 || ts[worst].nactive > 0)) {
+    const Tool *tl = NULL;
+    PetscCall(ContactGetTool(pb->contact, worst, &tl));
+    PetscCall(PetscStrlen(buf, &l));
+    PetscCall(PetscSNPrintf(buf + l, len - l, "; tool %s at the last iteration: %d nodes entered contact, %d left, %d changed between stick and slip, %d in contact, penetration up to %.3g (%.2g of the element size), normal force up to %.3g", tl->name, (int)ts[worst].nin, (int)ts[worst].nout, (int)ts[worst].nslip, (int)ts[worst].nactive, (double)ts[worst].pen, (double)ts[worst].penh, (double)ts[worst].fmax));
+    PetscCall(PetscStrlen(buf, &l));
+    if (ts[worst].penh > 0.5) PetscCall(PetscSNPrintf(buf + l, len - l, "; try: a stiffer penalty for it (-tool_%s_penalty_normal) or -contact_augmented", tl->name));
+    else if (ts[worst].nin + ts[worst].nout > 0) PetscCall(PetscSNPrintf(buf + l, len - l, "; try: a wider switching band (-contact_regularization_relative) or -newton_monitor_contact to follow the nodes per iteration"));
+    else if (ts[worst].nslip > 0) PetscCall(PetscSNPrintf(buf + l, len - l, "; try: -contact_tangent or -newton_monitor_contact to follow the nodes per iteration"));
+    else PetscCall(PetscSNPrintf(buf + l, len - l, "; try: -newton_monitor_contact to follow |R| and the contact per iteration"));
+  }
+  PetscCall(PetscFree(ts));
+  (void)st;
+  PetscFunctionReturn(0);
 }
 
 /* frame seeds of the contact nodes at U: from the committed frames (a step, or a retry, starts
@@ -818,16 +871,19 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         PetscReal f;
         PetscCall(ContactAugmentSoften(pb->contact, &softened, &f));
         if (softened) {
-          char buf[256];
+          char buf[256], why[768];
           FailureCause(st, pb, reason, buf, sizeof(buf));
+          PetscCall(ExplainFailure(st, pb, why, sizeof(why)));
           total_soft++;
           PetscCall(PetscPrintf(pb->comm, "step %" PetscInt_FMT " at %s %.6g: %s; retrying with the penalties' factor %g (-contact_augmented_soften)\n", step + 1, st->stages.given ? "time" : "load", (double)lam_t, buf, (double)f));
+          if (why[0]) PetscCall(PetscPrintf(pb->comm, "  %s\n", why));
           continue;
         }
       }
       {
-        char buf[256];
+        char buf[256], why[768];
         FailureCause(st, pb, reason, buf, sizeof(buf));
+        PetscCall(ExplainFailure(st, pb, why, sizeof(why)));
         cuts++;
         total_cuts++;
         /* without stages the time is the load, as the messages have always said */
@@ -835,9 +891,10 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
         char        sn[96] = "";
         if (st->stages.given) PetscCall(PetscSNPrintf(sn, sizeof(sn), "stage %s, ", sg->name));
         PetscCheck(cuts <= st->max_cuts && h * st->cut >= sg->dt_min, pb->comm, PETSC_ERR_NOT_CONVERGED,
-                   "step %" PetscInt_FMT " failed at %s %.6g (%sincrement %.3g) after %" PetscInt_FMT " cuts: %s; the results up to %s %.6g are complete in %s",
-                   step + 1, tw, (double)lam_t, sn, (double)h, cuts - 1, buf, tw, (double)lam_c, res->dir);
+                   "step %" PetscInt_FMT " failed at %s %.6g (%sincrement %.3g) after %" PetscInt_FMT " cuts: %s%s%s; the results up to %s %.6g are complete in %s",
+                   step + 1, tw, (double)lam_t, sn, (double)h, cuts - 1, buf, why[0] ? "; " : "", why, tw, (double)lam_c, res->dir);
         PetscCall(PetscPrintf(pb->comm, "step %" PetscInt_FMT " at %s %.6g: %s; retrying with increment %.3g\n", step + 1, tw, (double)lam_t, buf, (double)(h * st->cut)));
+        if (why[0]) PetscCall(PetscPrintf(pb->comm, "  %s\n", why));
         dl = h * st->cut;
       }
     }
@@ -903,6 +960,11 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     PetscInt relaxed, reverted, trials;
     PetscCall(NewtonLineSearchGetCounts(st->nls, &relaxed, &reverted, &trials));
     if (trials) PetscCall(PetscPrintf(pb->comm, "line search: %" PetscInt_FMT " residual evaluations, %" PetscInt_FMT " relaxed steps, %" PetscInt_FMT " of them reverted (-newton_watchdog)\n", trials, relaxed, reverted));
+    {
+      PetscInt searches, etrials, limited, fallback;
+      PetscCall(NewtonLineSearchGetEnergyCounts(st->nls, &searches, &etrials, &limited, &fallback));
+      if (searches) PetscCall(PetscPrintf(pb->comm, "energy line search: %" PetscInt_FMT " searches, %" PetscInt_FMT " residual evaluations, %" PetscInt_FMT " first steps shortened by the contact step limit (-newton_step_depth), %" PetscInt_FMT " backtracked on |R| (-newton_linesearch_contact)\n", searches, etrials, limited, fallback));
+    }
   }
 
   PetscCall(ResultsClose(res));

@@ -13,7 +13,7 @@ struct _n_NewtonLineSearch {
   PetscErrorCode (*limit)(void *, Vec, Vec, PetscReal *); /* the longest step the geometry allows */
   void     *limit_ctx;
   PetscInt  limited;  /* energy searches whose first trial the limit shortened */
-  PetscInt  energy_trials, energy_fallback; /* energy search: evaluations, searches that fell back to |R| */
+  PetscInt  searches, energy_trials, energy_fallback; /* energy search: searches, residual evaluations, searches that fell back to |R| */
   char      type[64]; /* the line search type it replaced                                      */
   PetscReal rise;     /* kappa: a full step may raise |R| up to this factor (a relaxed step)    */
   PetscReal alpha;    /* the sufficient decrease, as a fraction of the slope                  */
@@ -151,7 +151,6 @@ static PetscErrorCode EnergySearch(NewtonLineSearch nls, SNESLineSearch ls, SNES
     PetscCall(VecWAXPY(W, -lam, Y, X));
     PetscCall(SNESComputeFunction(snes, W, G));
     nls->trials++;
-    nls->energy_trials++;
     PetscCall(VecNorm(G, NORM_2, &g));
     failed = (PetscIsInfOrNanReal(g) || (nls->nfail && *nls->nfail != nf0)) ? PETSC_TRUE : PETSC_FALSE;
     if (failed) {
@@ -230,7 +229,11 @@ static PetscErrorCode NewtonLineSearchApply(SNESLineSearch ls, void *ctx)
   PetscCall(SNESLineSearchPreCheck(ls, X, Y, &changed));
   PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
   if (nls->mode == 2) {
+    const PetscInt t0 = nls->trials;
     PetscCall(EnergySearch(nls, ls, snes, mon, X, F, Y, W, G, fnorm, &lambda, &g, &ok));
+    nls->searches++;
+    nls->energy_trials += nls->trials - t0; /* counted apart from the watchdog's */
+    nls->trials = t0;
     if (!ok) {
       PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_REDUCT));
       PetscFunctionReturn(0);
@@ -350,6 +353,16 @@ PetscErrorCode NewtonLineSearchGetCounts(NewtonLineSearch nls, PetscInt *relaxed
   *relaxed  = nls ? nls->relaxed : 0;
   *reverted = nls ? nls->reverted : 0;
   *trials   = nls ? nls->trials : 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonLineSearchGetEnergyCounts(NewtonLineSearch nls, PetscInt *searches, PetscInt *trials, PetscInt *limited, PetscInt *fallback)
+{
+  PetscFunctionBeginUser;
+  *searches = nls ? nls->searches : 0;
+  *trials   = nls ? nls->energy_trials : 0;
+  *limited  = nls ? nls->limited : 0;
+  *fallback = nls ? nls->energy_fallback : 0;
   PetscFunctionReturn(0);
 }
 
