@@ -12,7 +12,7 @@
 # The shrinking of the increment after a hard step (-load_shrink_its, -load_shrink_factor; off by
 # default): the seed case never takes more than 10 iterations in a step (the same run with
 # -load_shrink_its 10), and with 5 every step that took more than 5 is followed by one of half its size.
-# The force-relative Newton tolerance (-newton_force_tol; off by default): far below the relative
+# The force-relative Newton tolerance (-newton_force_tol; 1e-6 by default, 0 off): far below the relative
 # tolerance it changes nothing, loose it saves iterations and keeps the punch force, and it takes the
 # coarse U-channel with a 0.002 mm gap smoothing past the step where its draw stalls without it.
 # A failed trial point of the backtracking line search is rejected (-newton_domain_backtrack).
@@ -130,15 +130,17 @@ atrito_rc 1 badshrink -options_file $C -load_shrink_factor 0
   ok "-load_shrink_factor 0 refused with one line naming the option" ||
   { not_ok "-load_shrink_factor 0: exit $RC"; tail -n 3 "$OUT/badshrink.log" | indent; }
 
-# -newton_force_tol (off by default): Newton has converged also when |R| <= eps F, F the size of the
-# elements' force vectors. Far below -snes_rtol |R_0| (1e-12) it changes nothing; loose (1e-6) it
-# saves iterations on the seed case and the punch force stays within 1e-5 of the default run's.
+# -newton_force_tol (1e-6 by default): Newton has converged also when |R| <= eps F, F the size of the
+# elements' force vectors. Far below -snes_rtol |R_0| (1e-12) it changes nothing against the option
+# off (0); loose (1e-6, the default) it saves iterations on the seed case and the punch force stays
+# within 1e-5 of the run with the option off.
+atrito 1 ftol0 -options_file $C -output_interval 0 -newton_force_tol 0 &&
 atrito 1 ftol12 -options_file $C -output_interval 0 -newton_force_tol 1e-12 &&
-  { cmp -s "$OUT/lin/contact.csv" "$OUT/ftol12/contact.csv" &&
-      ok "-newton_force_tol 1e-12: the seed case as without it (contact.csv identical)" ||
+  { cmp -s "$OUT/ftol0/contact.csv" "$OUT/ftol12/contact.csv" &&
+      ok "-newton_force_tol 1e-12: the seed case as with -newton_force_tol 0 (contact.csv identical)" ||
       not_ok "-newton_force_tol 1e-12 changed the seed case"; }
 atrito 1 ftol6 -options_file $C -output_interval 0 -newton_force_tol 1e-6 && {
-  $PY - "$OUT/lin" "$OUT/ftol6" <<'PYEOF'
+  $PY - "$OUT/ftol0" "$OUT/ftol6" <<'PYEOF'
 import csv, re, sys
 def punch(d): return [r for r in csv.DictReader(open(f"{d}/contact.csv")) if r["tool"] == "punch"]
 def its(d): return int(re.search(r"done: \d+ steps, (\d+) Newton", open(d + ".log").read()).group(1))
@@ -147,7 +149,7 @@ fa, fb = float(a[-1]["force"]), float(b[-1]["force"])
 d = abs(fa - fb) / abs(fa)
 ia, ib = its(sys.argv[1]), its(sys.argv[2])
 ok = a[-1]["time"] == b[-1]["time"] and d < 1e-5 and ib < ia
-print(("ok" if ok else "not ok") + f" - -newton_force_tol 1e-6: {ib} Newton iterations against {ia}, punch force at 40 mm {fb:.4f} against {fa:.4f} N ({d:.1e} relative, tolerance 1e-5)")
+print(("ok" if ok else "not ok") + f" - -newton_force_tol 1e-6: {ib} Newton iterations against {ia} with 0, punch force at 40 mm {fb:.4f} against {fa:.4f} N ({d:.1e} relative, tolerance 1e-5)")
 PYEOF
 }
 # and on 2 ranks (the force scale summed over the ranks): the same steps and Newton iterations, the
@@ -173,11 +175,14 @@ atrito_rc 1 ucftol -options_file cases/numisheet93_uchannel_coarse.opts -output_
   { not_ok "-newton_force_tol 1e-7: the coarse U-channel did not reach step 50 (exit $RC)"; tail -n 2 "$OUT/ucftol.log" | indent; }
 
 # A trial point of the backtracking line search where the residual cannot be evaluated
-# (-newton_domain_backtrack, default on): the seed case in steps of up to 4 mm, where Newton's full
+# (-newton_domain_backtrack, default on; PETSc's line search, which -newton_linesearch_contact petsc
+# keeps in the stages with a tool, the energy search's own shortening being tested in
+# tests/test_linesearch.c): the seed case in steps of up to 4 mm, where Newton's full
 # steps invert elements at the pole, rejects such points (counted in the summary) and reaches the same
 # converged states as without (the same steps, contact forces to 1e-6), on 1 and 2 ranks alike (the
-# counts differ: the four steps that are cut iterate differently at round-off)
-BIG="-options_file $C -output_interval 0 -load_dt_max 0.1 -load_grow_its 7"
+# counts differ: the four steps that are cut iterate differently at round-off; Newton to -snes_rtol,
+# -newton_force_tol 0, for the comparison to 1e-8)
+BIG="-options_file $C -output_interval 0 -load_dt_max 0.1 -load_grow_its 7 -newton_linesearch_contact petsc -newton_force_tol 0"
 atrito 1 dom1 $BIG && atrito 2 dom2 $BIG && atrito 1 dom0 $BIG -newton_domain_backtrack 0 && {
   n1=$(grep -o 'line search: [0-9]* trial points' "$OUT/dom1.log" | grep -o '[0-9]*')
   n2=$(grep -o 'line search: [0-9]* trial points' "$OUT/dom2.log" | grep -o '[0-9]*')
