@@ -74,6 +74,7 @@ run scripts         bash tests/test_scripts.sh
 run options         bash tests/test_options.sh
 run bad-input       bash tests/test_bad_input.sh
 run umat-runs       bash tests/test_umat.sh
+run tutorial       bash tests/test_tutorial.sh
 run memory          bash tests/test_memory.sh
 run valgrind        bash tests/test_valgrind.sh
 

@@ -1,0 +1,27 @@
+# cylindrical cup (doc/tutorial.md): die, opening radius 26.5, shoulder radius 5, face z = 0; written by scripts/make_cylcup_tools.py
+patches 3
+patch0_type coons
+patch0_bottom_type arc
+patch0_bottom_points 31.0214442199,-5.46991759651,0,-5.46991759651,31.0214442199,0,0,0,0
+patch0_top_type arc
+patch0_top_points 64.0125039458,-11.2871315484,0,-11.2871315484,64.0125039458,0,0,0,0
+patch0_left_type line
+patch0_left_points 31.0214442199,-5.46991759651,0,64.0125039458,-11.2871315484,0
+patch0_right_type line
+patch0_right_points -5.46991759651,31.0214442199,0,-11.2871315484,64.0125039458,0
+patch0_sense -1
+patch1_type torus
+patch1_center 0,0,-5
+patch1_axis 0,0,1
+patch1_ref 1,0,0
+patch1_major 31.5
+patch1_minor 5
+patch1_range -10.0,100.0,90,180
+patch1_sense 1
+patch2_type cylinder
+patch2_center 0,0,-5
+patch2_axis 0,0,1
+patch2_ref 1,0,0
+patch2_radius 26.5
+patch2_range -10.0,100.0,-80,0
+patch2_sense -1

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The tutorial's cylindrical cup (doc/tutorial.md, cases/cylindrical_cup.opts): a process set up
+# from the docs alone, run on the code's defaults. Checks: the options file sets no contact option
+# but the sets and the friction, and no stage increment bound; the whole process (close, draw,
+# release, springback) runs at 1 and 2 ranks, whose histories agree to 1e-8 (the Newton iteration
+# count may differ by two in the first draw step, which ends near its tolerance; mean_penetration
+# is written with 7 digits, its last one rounding either way); the post-processing of the
+# tutorial (scripts/cylcup_post.py) on its output: ears at 0 and 90 degrees (the rim draws in more
+# at 45: Hill's r-values with r0 + r90 > 2 r45), the largest thinning at the punch's profile
+# (initial radius 20 to 30 mm), the largest punch force within 15 % of the classical estimate
+# pi d t UTS (d the punch's diameter plus t, UTS the engineering tensile strength of the Swift
+# law, K n^n e^-n: 49.2 kN).
+set -u
+cd "$(dirname "$0")/.." && . tests/lib.sh
+OUT=$(test_out tutorial)
+C=cases/cylindrical_cup.opts
+
+bad=$(grep -E '^-(contact_|tool_[a-z]*_(penalty|gap_smoothing|regularization|friction_))' "$C" | grep -v -E '^-contact_friction |^-tool_[a-z]*_contact_set ')
+lim=$(grep -E 'dt_max' "$C")
+[ -z "$bad" ] && [ -z "$lim" ] && ok "cases/cylindrical_cup.opts: no contact option but the sets and the friction, no increment bound" ||
+  not_ok "cases/cylindrical_cup.opts sets tuning options: $bad $lim"
+
+atrito 1 cup1 -options_file $C -output_interval 5 && atrito 2 cup2 -options_file $C -output_interval 0 && {
+  d1=$(grep -o 'done: .*' "$OUT/cup1.log"); d2=$(grep -o 'done: .*' "$OUT/cup2.log")
+  t1=$(tail -n 1 "$OUT/cup1/history.csv" | awk -F, '{print $2}')
+  [ -n "$d1" ] && [ -n "$d2" ] && grep -q '^stage springback' "$OUT/cup1.log" && ok "cylindrical cup on the defaults: close, draw, release, springback at 1 rank ($d1) and 2 ($d2)" ||
+    not_ok "cylindrical cup: '$d1' '$d2'"
+  for f in history.csv contact.csv; do
+    $PY tests/compare_csv.py "$OUT/cup1/$f" "$OUT/cup2/$f" --rtol 1e-8 --atol 1e-9 --skip 'residual_*,mean_penetration' --int-tol newton_its=2 --label "cylindrical cup np=1 against np=2, $f, 1e-8"
+  done
+  if $PY scripts/cylcup_post.py "$OUT/cup1" --plot "$OUT/cup.png" >"$OUT/post.txt" 2>&1; then
+    $PY - "$OUT/post.txt" <<'PYEOF'
+import math, re, sys
+t = open(sys.argv[1]).read()
+ear = float(re.search(r"draws in (-?[0-9.]+) mm more at 45", t).group(1))
+m = re.search(r"thinning: thickness strain (-?[0-9.]+) .* at initial radius ([0-9.]+) mm", t)
+f = float(re.search(r"largest punch force ([0-9.]+) kN", t).group(1))
+K, n = 565.32, 0.2589
+est = math.pi * 51.0 * 1.0 * K * n ** n * math.exp(-n) / 1000
+good = ear > 0.5 and float(m.group(1)) < 0 and 20 <= float(m.group(2)) <= 30 and abs(f / est - 1) < 0.15
+print(("ok - " if good else "not ok - ") + f"cylindrical cup: ears at 0 and 90 deg (draw-in {ear:.2f} mm larger at 45), largest thinning {float(m.group(1)):.3f} at initial radius {m.group(2)} mm (the punch's profile: 20 to 30), largest punch force {f:.1f} kN against pi d t UTS {est:.1f} kN ({100 * (f / est - 1):+.1f} %, within 15 %)")
+PYEOF
+  else not_ok "scripts/cylcup_post.py failed"; tail -n 3 "$OUT/post.txt" | indent; fi
+  [ -s "$OUT/cup.png" ] && ok "the tutorial's figure written" || not_ok "no figure"
+}
