@@ -1,6 +1,10 @@
-/* Newton's watchdog line search, by default in the stages that release their tools by nodal forces
-   and have no tool present (the springback's unloading); the other stages keep PETSc's line search
-   (-snes_linesearch_type, backtracking by default). -newton_watchdog none|release|contactfree
+/* Newton's line searches (shell line searches of PETSc's SNES). In the stages with a tool present,
+   the energy line search (-newton_linesearch_contact energy, the default; src/solver/linesearch.c,
+   EnergySearch, and doc/contact.md, Contact without tuning): the step length where R(x - lambda y).y
+   = 0, limited first by the contact's geometry (NewtonLineSearchSetStepLimit). In the stages that
+   release their tools by nodal forces and have no tool present (the springback's unloading), the
+   watchdog line search below; the other stages keep PETSc's line search (-snes_linesearch_type,
+   backtracking by default; when it is given, it is used everywhere). -newton_watchdog none|release|contactfree
    (default release; contactfree: every stage without a tool present; when -snes_linesearch_type
    is given PETSc's is used everywhere). A full Newton step x -> x - y is taken when it satisfies
    the Armijo condition of 1/2 |R|^2, whose slope along the Newton direction is -|R_k|^2:
@@ -36,11 +40,13 @@
 
 typedef struct _n_NewtonLineSearch *NewtonLineSearch;
 
-/* reads -newton_watchdog, -newton_linesearch_rise and -newton_linesearch_alpha; *nls is NULL when
-   the watchdog is used nowhere */
+/* reads -newton_watchdog, -newton_linesearch_rise, -newton_linesearch_alpha,
+   -newton_linesearch_contact, -newton_linesearch_eta and -newton_linesearch_max_it; *nls is NULL
+   when neither search is used anywhere (or -snes_linesearch_type is given) */
 PetscErrorCode NewtonLineSearchCreate(MPI_Comm comm, NewtonLineSearch *nls);
 /* at a stage's start: whether a tool is present, whether the stage releases tools by nodal forces;
-   makes the SNES's line search this one (a shell line search) where -newton_watchdog asks for it,
+   makes the SNES's line search this one (a shell line search) where -newton_watchdog or
+   -newton_linesearch_contact asks for it,
    else gives back the one it replaced (with its options); nothing when nls is NULL */
 PetscErrorCode NewtonLineSearchSetStage(NewtonLineSearch nls, SNES snes, PetscBool contact, PetscBool nodal_release);
 /* whether the current stage uses the energy line search (-newton_linesearch_contact energy) */

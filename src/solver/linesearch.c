@@ -209,6 +209,26 @@ static PetscErrorCode EnergySearch(NewtonLineSearch nls, SNESLineSearch ls, SNES
   PetscFunctionReturn(0);
 }
 
+/* the end of a search: the accepted point W, its residual G (norm g) and lambda become the line
+   search's result, or the search failed */
+static PetscErrorCode Accept(SNESLineSearch ls, PetscBool ok, Vec X, Vec F, Vec Y, Vec W, Vec G, PetscReal lambda, PetscReal g)
+{
+  PetscReal xnorm, ynorm;
+
+  PetscFunctionBeginUser;
+  if (!ok) {
+    PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_REDUCT));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecNorm(Y, NORM_2, &ynorm));
+  PetscCall(VecCopy(W, X));
+  PetscCall(VecCopy(G, F));
+  PetscCall(VecNorm(X, NORM_2, &xnorm));
+  PetscCall(SNESLineSearchSetLambda(ls, lambda));
+  PetscCall(SNESLineSearchSetNorms(ls, xnorm, g, ynorm));
+  PetscFunctionReturn(0);
+}
+
 /* the line search: see linesearch.h */
 static PetscErrorCode NewtonLineSearchApply(SNESLineSearch ls, void *ctx)
 {
@@ -234,16 +254,7 @@ static PetscErrorCode NewtonLineSearchApply(SNESLineSearch ls, void *ctx)
     nls->searches++;
     nls->energy_trials += nls->trials - t0; /* counted apart from the watchdog's */
     nls->trials = t0;
-    if (!ok) {
-      PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_REDUCT));
-      PetscFunctionReturn(0);
-    }
-    PetscCall(VecNorm(Y, NORM_2, &ynorm));
-    PetscCall(VecCopy(W, X));
-    PetscCall(VecCopy(G, F));
-    PetscCall(VecNorm(X, NORM_2, &xnorm));
-    PetscCall(SNESLineSearchSetLambda(ls, lambda));
-    PetscCall(SNESLineSearchSetNorms(ls, xnorm, g, ynorm));
+    PetscCall(Accept(ls, ok, X, F, Y, W, G, lambda, g));
     PetscFunctionReturn(0);
   }
   if (it == 0) nls->watching = PETSC_FALSE; /* a new solve: the residual may be another (the
@@ -288,16 +299,7 @@ static PetscErrorCode NewtonLineSearchApply(SNESLineSearch ls, void *ctx)
     if (mon) PetscCall(PetscViewerASCIIPrintf(mon, "      Line search (watchdog): full step |R| %g -> %g: backtracking\n", (double)fnorm, (double)g));
     PetscCall(Backtrack(nls, ls, snes, mon, X, Y, W, G, fnorm, 1.0, g, &lambda, &g, &ok));
   }
-  if (!ok) {
-    PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_REDUCT));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(VecNorm(Y, NORM_2, &ynorm));
-  PetscCall(VecCopy(W, X));
-  PetscCall(VecCopy(G, F));
-  PetscCall(VecNorm(X, NORM_2, &xnorm));
-  PetscCall(SNESLineSearchSetLambda(ls, lambda));
-  PetscCall(SNESLineSearchSetNorms(ls, xnorm, g, ynorm));
+  PetscCall(Accept(ls, ok, X, F, Y, W, G, lambda, g));
   PetscFunctionReturn(0);
 }
 
