@@ -36,15 +36,19 @@ for side in bottom:-1.216741,-1.216741,1.542544,1.216741,-1.216741 top:-1.216741
 done
 #    (sphere_area: the sphere with the penalties per unit area, the same per interior node;
 #    spindle: a spindle torus, minor radius 3 > major 0.5, its axis horizontal, the block pressed
-#    and dragged by its outer equator's region, where both curvatures differ)
+#    and dragged by its outer equator's region, where both curvatures differ; sphere_auto: the
+#    automatic penalty, so the regularised normal law of 1 % of the element size; sphere_band: its
+#    band half the element size, most contact nodes in it at first touch)
 P="-tool_ball_patch0_type torus -tool_ball_patch0_center 0,0,4.5 -tool_ball_patch0_axis 0,1,0 -tool_ball_patch0_ref 0,0,-1"
 P="$P -tool_ball_patch0_major 0.5 -tool_ball_patch0_minor 3 -tool_ball_patch0_range -90,90,-80,80"
-for tool in plane sphere coons sphere_area spindle; do
+for tool in plane sphere coons sphere_area spindle sphere_auto sphere_band; do
   for tan in analytic fd; do
     name=jac_${tool}_$tan
     if [ $tool = plane ]; then opts="-options_file cases/block_plane_drag.opts -output_interval 0 -box_cells 2,2,1"
     elif [ $tool = sphere ]; then opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1"
     elif [ $tool = spindle ]; then opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 $P"
+    elif [ $tool = sphere_auto ]; then opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 -contact_penalty_normal auto"
+    elif [ $tool = sphere_band ]; then opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 -contact_penalty_normal auto -contact_regularization_relative 0.5"
     elif [ $tool = sphere_area ]; then opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 -contact_penalty_per_area -contact_penalty_normal 4e4 -contact_penalty_tangential 4e3"
     else opts="-options_file cases/block_sphere.opts -output_interval 0 -box_cells 4,4,1 $C"; fi
     # shellcheck disable=SC2086
