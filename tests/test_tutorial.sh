@@ -9,7 +9,7 @@
 # at 45: Hill's r-values with r0 + r90 > 2 r45), the largest thinning at the punch's profile
 # (initial radius 20 to 30 mm), the largest punch force within 15 % of the classical estimate
 # pi d t UTS (d the punch's diameter plus t, UTS the engineering tensile strength of the Swift
-# law, K n^n e^-n: 49.2 kN).
+# law, K n^n e^-n: 49.2 kN); the holder's penalty from its force.
 set -u
 cd "$(dirname "$0")/.." && . tests/lib.sh
 OUT=$(test_out tutorial)
@@ -42,4 +42,16 @@ print(("ok - " if good else "not ok - ") + f"cylindrical cup: ears at 0 and 90 d
 PYEOF
   else not_ok "scripts/cylcup_post.py failed"; tail -n 3 "$OUT/post.txt" | indent; fi
   [ -s "$OUT/cup.png" ] && ok "the tutorial's figure written" || not_ok "no figure"
+  # the holder's automatic penalty from its force: 4000 N over the nodes under it at the start (119:
+  # the flange under the annulus of radii 32 to 65), at a penetration of 1e-4 of the element size
+  # (the thickness, 1 mm): every one of its 205 slave nodes at that penalty
+  l=$(grep -o 'tool holder: .*' "$OUT/cup1.log")
+  $PY - "$l" <<'PYEOF'
+import re, sys
+l = sys.argv[1]
+k = float(re.search(r"regularising stiffness ([0-9.e+]+)", l).group(1))
+f, n = (float(x) for x in re.search(r"K_N at most ([0-9.e+]+) N over 0.0001 h \(([0-9.]+) nodes under it\)", l).groups())
+good = abs(f * n / 4000 - 1) < 1e-5 and 100 < n < 205 and abs(k / (205 * f / 1e-4) - 1) < 1e-2
+print(("ok - " if good else "not ok - ") + f"the holder's penalty from its force (-contact_penalty_force_penetration 1e-4): 4000 N over {n:g} nodes under it, {f:.4g} N each; its 205 nodes' penalties sum to {k:.6g} N/mm against {205 * f / 1e-4:.6g}")
+PYEOF
 }

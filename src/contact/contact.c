@@ -53,6 +53,8 @@ typedef struct {
   PetscReal  dc[3];     /* its committed displacement (tools with unknowns)                    */
   PetscReal  path_c;    /* path length of the committed displacements (tools with unknowns)    */
   PetscReal  kreg;      /* regularising stiffness: the sum of the penalties K_N of its nodes    */
+  PetscReal  fnode;     /* driven by force, automatic penalty: its largest force over the nodes under it (0: none) */
+  PetscReal  nunder;    /* those nodes: projected on it at the start, at most an element size from it */
   PetscBool  release;   /* force-controlled release (ContactReleaseTool): in x, y, z the target  */
   PetscReal  rel_t[2];  /* goes linearly from rel_f, the force at rel_t[0], to 0 at rel_t[1]      */
   PetscReal  rel_f[3];
@@ -124,6 +126,7 @@ struct _p_Contact {
   PetscReal     hmin;          /* smallest element size normal to the contact faces (0: unknown) */
   PetscBool     reg_auto;      /* -contact_regularization auto: reg_rel times the node's element size (automatic penalty) */
   PetscReal     reg_rel;
+  PetscReal     kforce_pen;    /* -contact_penalty_force_penetration: a force-driven tool's nodes at its force's share */
   PetscReal    *hn;            /* ns: the element size normal to the contact faces at each node (NULL: unknown) */
   PetscReal     tol;           /* the penetration tolerance of the augmentation              */
   PetscReal    *lam;           /* ns*3: multipliers of the current Newton solve (lN, lT1, lT2) */
@@ -606,6 +609,9 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     PetscCall(PetscOptionsReal("-contact_regularization_relative", "With -contact_regularization auto: the regularisation's width as a fraction of the element size normal to the contact face", "doc/contact.md", c->reg_rel, &c->reg_rel, NULL));
     PetscCheck(c->reg_rel >= 0 && c->reg_rel < 1, comm, PETSC_ERR_USER_INPUT, "-contact_regularization_relative %g must lie in [0, 1)", (double)c->reg_rel);
   }
+  c->kforce_pen = 1e-4;
+  PetscCall(PetscOptionsReal("-contact_penalty_force_penetration", "Automatic penalty of a tool driven by force: at most its largest force over its slave nodes divided by this fraction of each node's element size (the penetration at that share of the force; 0: E A / h alone)", "doc/contact.md", c->kforce_pen, &c->kforce_pen, NULL));
+  PetscCheck(c->kforce_pen >= 0 && c->kforce_pen < 1, comm, PETSC_ERR_USER_INPUT, "-contact_penalty_force_penetration %g must lie in [0, 1)", (double)c->kforce_pen);
   PetscCall(PetscOptionsReal("-contact_gap_smoothing", "Width (a length) over which the normal contact force is smoothed about gap 0 (C1 quadratic; 0: the plain bracket)", "doc/contact.md", c->law.delta, &c->law.delta, NULL));
   PetscCheck(c->law.delta >= 0 && !PetscIsInfOrNanReal(c->law.delta), comm, PETSC_ERR_USER_INPUT, "-contact_gap_smoothing %g must be >= 0", (double)c->law.delta);
   PetscCheck(c->kauto || (c->law.KN > 0 && PetscIsNormalReal(c->law.KN)), comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal %g must be positive", (double)c->law.KN);
@@ -754,7 +760,11 @@ static inline ContactLaw NodeLaw(const struct _p_Contact *contact, PetscInt i, P
   ContactLaw         law = tc->law;
   if (tc->kauto) {
     law.KN = contact->kn[i];
-    law.KT = tc->ktauto ? contact->kratio * contact->kn[i] : tc->law.KT;
+    /* a tool driven by force: no stiffer than its force's share per node over a penetration of
+       kforce_pen times the element size (a light holder on a sheet: E A / h put its nodes at
+       nanometre penetrations, at the open end of the regularised law where the stiffness vanishes) */
+    if (tc->fnode > 0 && contact->hn && contact->hn[i] > 0) law.KN = PetscMin(law.KN, tc->fnode / (contact->kforce_pen * contact->hn[i]));
+    law.KT = tc->ktauto ? contact->kratio * law.KN : tc->law.KT;
   } else if (contact->per_area) { /* penalties per unit area times the node's tributary area */
     law.KN *= contact->mesh->varea[contact->slave[i]];
     law.KT *= contact->mesh->varea[contact->slave[i]];
@@ -931,17 +941,40 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
   contact->nb = 0;
   for (PetscInt t = 0; t < nt; t++) {
     ToolContact *tc = &contact->tc[t];
-    PetscReal    loc[2] = {0, 0};
-    for (PetscInt i = 0; i < contact->ns; i++)
-      if (contact->tmask[i * nt + t]) {
-        loc[0] += 1;
-        loc[1] += NodeLaw(contact, i, t).KN;
+    PetscReal    loc[2] = {0, 0}, F = 0;
+    for (PetscInt i = 0; i < contact->ns; i++) loc[0] += contact->tmask[i * nt + t] ? 1 : 0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, 1, MPIU_REAL, MPI_SUM, contact->comm));
+    /* a force-driven tool's largest force (the amplitude's largest value, 1 for the ramp) */
+    for (int k = 0; k < 3; k++)
+      if (tc->drive[k] == TOOL_DRIVE_FORCE) {
+        PetscReal a = tc->famp[k].n ? 0 : 1;
+        for (PetscInt j = 0; j < tc->famp[k].n; j++) a = PetscMax(a, PetscAbsReal(tc->famp[k].v[j]));
+        F += PetscSqr(tc->fscale[k] * a);
       }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_REAL, MPI_SUM, contact->comm));
+    tc->fnode = 0;
+    if (tc->kauto && contact->kforce_pen > 0 && F > 0) {
+      /* its force's share per node: over the nodes under it at the start (projected on it, at most
+         an element size from it), or over all its slave nodes when none is */
+      PetscReal   nu = 0;
+      const double sh[3] = {0, 0, 0};
+      for (PetscInt i = 0; i < contact->ns; i++) {
+        Projection pr;
+        double     y[3];
+        if (!contact->tmask[i * nt + t] || !contact->hn) continue;
+        for (int k = 0; k < 3; k++) y[k] = m->X[3 * contact->slave[i] + k];
+        if (!ToolProject(&contact->tools[t], sh, y, contact->search, &pr) && PetscAbsReal(pr.gap) <= contact->hn[i]) nu += 1;
+      }
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nu, 1, MPIU_REAL, MPI_SUM, contact->comm));
+      tc->nunder = nu > 0 ? nu : loc[0];
+      tc->fnode  = PetscSqrtReal(F) / tc->nunder;
+    }
+    for (PetscInt i = 0; i < contact->ns; i++)
+      if (contact->tmask[i * nt + t]) loc[1] += NodeLaw(contact, i, t).KN;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc + 1, 1, MPIU_REAL, MPI_SUM, contact->comm));
     tc->kreg  = loc[1];
     tc->block = tc->reserve ? contact->nb++ : -1;
     if (tc->own || tc->block >= 0) {
-      char drv[160] = "";
+      char drv[320] = "";
       if (tc->block >= 0) {
         size_t l = 0;
         PetscCall(PetscStrncpy(drv, ", driven by force along", sizeof(drv)));
@@ -952,6 +985,10 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
           }
         PetscCall(PetscStrlen(drv, &l));
         PetscCall(PetscSNPrintf(drv + l, sizeof(drv) - l, ", regularising stiffness %g", (double)tc->kreg));
+        if (tc->fnode > 0) {
+          PetscCall(PetscStrlen(drv, &l));
+          PetscCall(PetscSNPrintf(drv + l, sizeof(drv) - l, ", K_N at most %g N over %g h (%g nodes under it)", (double)tc->fnode, (double)contact->kforce_pen, (double)tc->nunder));
+        }
       }
       if (tc->law.delta > 0) {
         size_t l = 0;
