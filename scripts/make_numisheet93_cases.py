@@ -42,14 +42,16 @@ ALU = dict(E=70000.0, nu=0.3, K=576.79, eps0=0.01658, n=0.3593, r0=0.71, r45=0.5
 CUP_AL = dict(CUP, t=0.81, mu=0.162)
 # the cup's variants: tag (file names numisheet93_<tag>_*), geometry and process, material, its name
 CUPS = {"cup": (CUP, MILD, "mild steel"), "cup_al": (CUP_AL, ALU, "aluminium")}
-# Contact: penalties per unit area and the augmented Lagrangian holding the penetration below 0.01 mm
+# Contact of the fixed-gap variants (*_gap.opts, the runs of doc/forming.md's "Status" before the
+# process cases): penalties per unit area and the augmented Lagrangian holding the penetration below 0.01 mm
 # (1.3 % of the thickness), its multipliers to 20 % (with 1 %, the default, the U-channel's updates
 # stall near 8 mm of stroke). The U-channel needs a soft penalty, 100 N/mm^3: with the strip's tiny
 # bending stiffness a stiffer one makes the contact status of the web's nodes on the flat punch cycle
 # from one Newton iteration to the next; the cup runs with 1000 N/mm^3. The search distance covers
 # the whole tools: with the default (5 % of the largest tool box) a node over the die's cavity that is
 # too far from its shoulder and walls is paired with the edge of the die's face, whose plane then
-# acts as if it extended over the cavity. doc/forming.md.
+# acts as if it extended over the cavity. doc/forming.md. The process cases give none of these: the
+# contact sets and the friction only, on the code's defaults (doc/contact.md, Contact without tuning).
 def contact(kn):
     return ["-contact_penalty_per_area", "-contact_penalty_normal %g" % kn, "-contact_penalty_tangential %g" % (kn / 10),
             "-contact_augmented", "-contact_augmented_tol 0.01", "-contact_augmented_multiplier_tol 0.2",
@@ -258,8 +260,8 @@ def write_case(name, header, lines):
 
 def process_opts(mu, f_holder, holder_amplitude, stroke, stages, nsteps, bcs):
     """the options the process cases share: contact set and friction per tool, the holder driven by
-    its force, the punch's stroke; then the stages: close (4 steps) and draw (nsteps, at most one
-    step per 1/nsteps), both with every tool and the conditions bcs, and the names of all stages."""
+    its force, the punch's stroke; then the stages: close (4 steps) and draw (nsteps), both with
+    every tool and the conditions bcs, and the names of all stages."""
     return ["-tool_punch_contact_set top", "-tool_die_contact_set bottom", "-tool_holder_contact_set top",
             "-tool_punch_friction %g" % mu, "-tool_die_friction %g" % mu,
             "-tool_holder_friction %g" % mu,
@@ -270,7 +272,7 @@ def process_opts(mu, f_holder, holder_amplitude, stroke, stages, nsteps, bcs):
             "-stage_names %s" % ",".join(stages),
             "-stage_close_duration 1", "-stage_close_steps 4",
             "-stage_close_tools punch,die,holder", "-stage_close_bcs %s" % bcs,
-            "-stage_draw_duration 1", "-stage_draw_steps %d" % nsteps, "-stage_draw_dt_max %g" % (1.0 / nsteps),
+            "-stage_draw_duration 1", "-stage_draw_steps %d" % nsteps,
             "-stage_draw_tools punch,die,holder", "-stage_draw_bcs %s" % bcs]
 
 
@@ -285,7 +287,7 @@ def uchannel_cases(level, h, gap=True):
         "-tool_punch_file cases/tools/numisheet93_uchannel_punch.tool",
         "-tool_die_file cases/tools/numisheet93_uchannel_die.tool",
         "-tool_holder_file cases/tools/numisheet93_uchannel_holder.tool",
-    ] + contact(100)
+    ]
     head = ("NUMISHEET'93 2D draw bending (U-channel), mild steel, blank holder force %g kN, %s mesh:\n"
             "half model (x >= 0) of a strip %g wide (one element, plane strain: y fixed on both sides),\n"
             "%d x 1 x 1 hexahedra (hex8_eas), t = %g; tools from cases/tools/numisheet93_uchannel_*.tool;\n"
@@ -296,14 +298,6 @@ def uchannel_cases(level, h, gap=True):
                "release (the tools removed, the contact force of each of their nodes falling to zero),\n"
                "springback (no tools; the centre line held where the draw left it)." % U["stroke"],
                common + [
-                   # the normal force smoothed over 0.01 mm of gap: with the plain bracket the web's
-                   # nodes resting on the flat punch switch contact from one Newton iterate to the next
-                   # and the draw stalls at 2 mm of stroke; 0.01 is the smallest band with which every
-                   # mesh runs through the four stages (the coarse one stalls at the release's end with
-                   # 0.005), and on the fine meshes it is within 1 % (punch force) and 0.25 degrees
-                   # (angles) of 0.002; 0.05, used before, lowered the punch force by 5 %
-                   # (doc/forming.md, "The U-channel's gap smoothing")
-                   "-contact_gap_smoothing 0.01",
                    "-bc_names symx,sides,pin",
                    "-bc_symx_components x", "-bc_sides_components y", "-bc_pin_components z",
                    # the centre line's bottom edge held where the draw left it (release and springback)
@@ -328,7 +322,7 @@ def uchannel_cases(level, h, gap=True):
     write_case("numisheet93_uchannel_%s_gap" % level,
                head + "\nWith today's options: the holder fixed at a gap equal to the thickness (its face on the\n"
                "sheet's top face), one contact set and friction for all tools; the drawing only (no release).",
-               common + [
+               common + contact(100) + [
                    "-bc_names symx,sides",
                    "-bc_symx_components x", "-bc_sides_components y",
                    "-contact_set top,bottom",
@@ -351,7 +345,7 @@ def cup_cases(level, tag="cup", gap=True):
         "-tool_punch_file cases/tools/numisheet93_%s_punch.tool" % tag,
         "-tool_die_file cases/tools/numisheet93_%s_die.tool" % tag,
         "-tool_holder_file cases/tools/numisheet93_%s_holder.tool" % tag,
-    ] + contact(1000)
+    ]
     head = ("NUMISHEET'93 square cup deep drawing, %s, blank holder force %g kN, %s mesh:\n"
             "quarter model (x, y >= 0; x the rolling direction), blank 150 x 150 x %g (quarter 75 x 75),\n"
             "%d x %d x 1 hexahedra (hex8_eas); punch stroke %g (draw-in read at 15 and 40);\n"
@@ -362,12 +356,6 @@ def cup_cases(level, tag="cup", gap=True):
                head + "\nProcess: close (the holder's force ramps to its value), draw (punch stroke %g)."
                % CUP["stroke"],
                common + [
-                   # the normal force smoothed over 0.002 mm of gap (0.25 % of the thickness): nodes at
-                   # zero gap with about 0.01 N (the blank's corner under the holder, the sheet under
-                   # the punch's flat head) switched contact from one Newton iterate to the next and cut
-                   # steps (aluminium, coarse: 24 cuts, 1198 Newton iterations; with it 3, 839); the
-                   # draw-in moves by at most 0.03 mm (doc/forming.md)
-                   "-contact_gap_smoothing 0.002",
                    "-bc_names symx,symy",
                    "-bc_symx_components x", "-bc_symy_components y",
                ] + process_opts(CUP["mu"], f_holder, "0,0,1,1,2,1", CUP["stroke"], ("close", "draw"), nsteps,
@@ -379,7 +367,7 @@ def cup_cases(level, tag="cup", gap=True):
     write_case("numisheet93_cup_%s_gap" % level,
                head + "\nWith today's options: the holder fixed at a gap equal to the thickness, one contact set\n"
                "and friction for all tools, no stages.",
-               common + [
+               common + contact(1000) + [
                    "-bc_names symx,symy",
                    "-bc_symx_components x", "-bc_symy_components y",
                    "-contact_set top,bottom",
