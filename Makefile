@@ -22,7 +22,7 @@ PETSC_LIBS   = $(shell pkg-config --libs PETSc 2>/dev/null)
 HDF5_DIR := /usr/lib/x86_64-linux-gnu/hdf5/openmpi
 CPPFLAGS = -Iinclude $(PETSC_CFLAGS) -I/usr/include/hdf5/openmpi -I/usr/include/hypre
 CFLAGS   ?= -O3 -march=native -flto=auto -g -std=c11 -Wall -Wextra -Wno-unused-parameter -fno-math-errno
-LDLIBS   = $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -ldmumps -lmumps_common -lmetis -lHYPRE -lm -ldl
+LDLIBS   = $(PETSC_LIBS) -L$(HDF5_DIR)/lib -L$(HDF5_DIR) -lhdf5 -ldmumps -lmumps_common -lmetis -lHYPRE -llapack -lm -ldl
 # the system Python if it has h5py and matplotlib (installed by install-deps.sh), else python3 on PATH
 PYTHON   = $(shell /usr/bin/python3 -c "import h5py, matplotlib" >/dev/null 2>&1 && echo /usr/bin/python3 || echo python3)
 

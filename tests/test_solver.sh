@@ -220,3 +220,17 @@ ts=$(sum_of "$OUT/disk_sheet2.log"); to=$(sum_of "$OUT/disk_sys.log")
 [ "$ms" -ge 1 ] && [ "$ms" -lt "$mq" ] && [ "$md" -ge 1 ] && [ "$md" -lt "$mo" ] && [ $((2 * ts)) -le "$to" ] && ! grep -q "never used" "$OUT/quarter_sheet1.log" "$OUT/disk_sheet2.log" &&
   ok "the sheet's coarse space: at most $ms Krylov iterations per Newton iteration on the quarter blank (without: $mq), $md on the whole blank (without: $mo), $ts in all there (without: $to)" ||
   not_ok "the sheet's coarse space: most $ms (quarter; without $mq), $md (whole; without $mo), total $ts (without $to), or an option never used"
+
+# 17. amgsys with force-driven tools (src/solver/amg.c, BorderSetUp: the tools' unknowns
+#     eliminated around the V-cycle through their Schur complement): the holder pressed by a force
+#     on a sheet pulled across a die (cases/forcetool_holder.opts) with cases/solver_process.opts
+#     at 1 and 2 ranks against LU; -ksp_view names the border
+FT="-options_file cases/forcetool_holder.opts -output_interval 0"
+atrito 1 ft_lu $FT
+for np in 1 2; do
+  atrito $np ft_sys$np $FT -options_file cases/solver_process.opts &&
+    compare "$OUT/ft_lu/history.csv" "$OUT/ft_sys$np/history.csv" 6 "force-driven holder: BiCGStab + amgsys bordered by the holder's unknowns (np=$np) against LU"
+done
+atrito 2 ft_view $FT -options_file cases/solver_process.opts -load_steps 2 -ksp_view &&
+  grep -q "bordered by 3 force-driven tool unknowns" "$OUT/ft_view.log" && ok "-ksp_view (np=2): amgsys bordered by the holder's 3 unknowns" ||
+  not_ok "-ksp_view: no border named"

@@ -36,7 +36,12 @@
    coarse correction by plate-like modes, y <- y + P A_c^-1 P^T (x - A y) (src/solver/
    sheetcoarse.c, whose comment derives it): the V-cycle leaves a thin sheet's bending modes
    almost untouched, and without it the Krylov iterations grow with the mesh. Its work vectors
-   are hypre's right-hand side and solution, free between applications. */
+   are hypre's right-hand side and solution, free between applications.
+
+   The unknowns of force-driven tools (a blank holder under its force: a few rows after the mesh's
+   on the last rank, dense in the columns of the nodes the tool touches) are no elasticity for
+   BoomerAMG to coarsen: the V-cycle works on the mesh block alone, and the tools' rows are
+   eliminated exactly around it through their Schur complement (BorderSetUp below). */
 #define _DEFAULT_SOURCE /* ffs() in hypre's utilities header */
 #include <strings.h>
 
@@ -49,6 +54,8 @@
 #include <HYPRE_IJ_mv.h>
 #include <HYPRE_parcsr_ls.h>
 #include <_hypre_parcsr_mv.h>
+
+#include <petscblaslapack.h>
 
 #include "problem.h"
 #include "sheetcoarse.h"
@@ -68,6 +75,15 @@ typedef struct {
   SheetCoarse     sc;
   Vec             wb, wx;     /* PETSc vectors on hypre's b and x arrays: the coarse space's work
                                  (no memory of their own)                                     */
+  /* the unknowns of force-driven tools, bordering the mesh block (the Jacobian's last rows) */
+  PetscInt        nm;         /* local mesh rows (the first nm of the local rows)             */
+  PetscInt        nt;         /* tool unknowns in all (0: none)                               */
+  PetscMPIInt     towner;     /* the rank that holds their rows                               */
+  Mat             Am;         /* the mesh block A                                             */
+  Vec            *W, *C;      /* M B_k and the rows C_k of the border, on the mesh's rows     */
+  Vec             xm, ym, um; /* work on the mesh's rows; um: the iterate's mesh part         */
+  PetscScalar    *S;          /* the Schur complement D - C M B, factored (LAPACK getrf)      */
+  PetscBLASInt   *piv;
 } PC_AMGSys;
 
 static const char *const Coarsen[] = {"CLJP", "Ruge-Stueben", "modifiedRuge-Stueben", "Falgout", "PMIS", "HMIS", NULL};
@@ -87,6 +103,22 @@ static PetscErrorCode HypreCheck(MPI_Comm comm, HYPRE_Int ierr, const char *what
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode BorderFree(PC_AMGSys *a)
+{
+  PetscFunctionBeginUser;
+  if (a->nt) {
+    PetscCall(VecDestroyVecs(a->nt, &a->W));
+    PetscCall(VecDestroyVecs(a->nt, &a->C));
+  }
+  PetscCall(MatDestroy(&a->Am));
+  PetscCall(VecDestroy(&a->xm));
+  PetscCall(VecDestroy(&a->ym));
+  PetscCall(VecDestroy(&a->um));
+  PetscCall(PetscFree2(a->S, a->piv));
+  a->nt = 0;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode PCReset_AMGSys(PC pc)
 {
   PC_AMGSys *a = (PC_AMGSys *)pc->data;
@@ -101,6 +133,7 @@ static PetscErrorCode PCReset_AMGSys(PC pc)
   PetscCall(SheetCoarseDestroy(&a->sc));
   PetscCall(VecDestroy(&a->wb));
   PetscCall(VecDestroy(&a->wx));
+  PetscCall(BorderFree(a));
   PetscFunctionReturn(0);
 }
 
@@ -114,9 +147,10 @@ static PetscErrorCode PCDestroy_AMGSys(PC pc)
 
 /* the component (0, 1, 2) of each local row, from the mesh's local section (dofs and constrained
    components of each point) and its global section (which points this rank owns, at which offset);
-   allocated with malloc: hypre takes it over and frees it. *ok: every local row is a displacement
-   unknown of the mesh (not so with the unknowns of force-driven tools) */
-static PetscErrorCode RowComponents(DM dm, PetscInt rstart, PetscInt n, HYPRE_Int **out, PetscBool *ok)
+   -1 for a row that is no displacement unknown of the mesh (a force-driven tool's, which the
+   problem numbers after the mesh's on the last rank). Allocated with malloc: hypre takes it over
+   and frees it. *nmesh: the rows with a component; *tail: they are the first *nmesh local rows */
+static PetscErrorCode RowComponents(DM dm, PetscInt rstart, PetscInt n, HYPRE_Int **out, PetscInt *nmesh, PetscBool *tail)
 {
   PetscSection s, gs;
   PetscInt     pStart, pEnd, nset = 0;
@@ -151,8 +185,133 @@ static PetscErrorCode RowComponents(DM dm, PetscInt rstart, PetscInt n, HYPRE_In
       }
     }
   }
-  *ok  = nset == n ? PETSC_TRUE : PETSC_FALSE;
-  *out = f;
+  *tail = PETSC_TRUE;
+  for (PetscInt i = 0; i < nset; i++)
+    if (f[i] < 0) *tail = PETSC_FALSE;
+  *nmesh = nset;
+  *out   = f;
+  PetscFunctionReturn(0);
+}
+
+/* One application of the preconditioner of the mesh block, M ~ A^-1, on vectors of the mesh's
+   rows: a V-cycle, then the sheet's coarse correction where there is one */
+static PetscErrorCode MeshApply(PC pc, Vec x, Vec y)
+{
+  PC_AMGSys          *a = (PC_AMGSys *)pc->data;
+  Mat                 A;
+  hypre_ParCSRMatrix *pA;
+  const PetscScalar  *xa;
+  PetscScalar        *ya;
+  HYPRE_Complex      *b  = hypre_VectorData(hypre_ParVectorLocalVector((hypre_ParVector *)a->pb));
+  HYPRE_Complex      *xs = hypre_VectorData(hypre_ParVectorLocalVector((hypre_ParVector *)a->px));
+
+  PetscFunctionBeginUser;
+  if (a->Am) A = a->Am;
+  else PetscCall(PCGetOperators(pc, NULL, &A));
+  PetscCall(MatHYPREGetParCSR(a->hmat ? a->hmat : A, &pA));
+  PetscCall(VecGetArrayRead(x, &xa));
+  for (PetscInt i = 0; i < a->n; i++) {
+    b[i]  = xa[i];
+    xs[i] = 0;
+  }
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(HypreCheck(PetscObjectComm((PetscObject)pc), HYPRE_BoomerAMGSolve(a->amg, (HYPRE_ParCSRMatrix)pA, a->pb, a->px), "HYPRE_BoomerAMGSolve"));
+  PetscCall(VecGetArrayWrite(y, &ya));
+  for (PetscInt i = 0; i < a->n; i++) ya[i] = xs[i];
+  PetscCall(VecRestoreArrayWrite(y, &ya));
+  if (a->sc) { /* y += P A_c^-1 P^T (x - A y), the residual in hypre's right-hand side, now free */
+    PetscCall(VecPlaceArray(a->wb, (PetscScalar *)b));
+    PetscCall(MatMult(A, y, a->wb));
+    PetscCall(VecAYPX(a->wb, -1.0, x));
+    PetscCall(SheetCoarseApply(a->sc, a->wb, y));
+    PetscCall(VecResetArray(a->wb));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The border of force-driven tools' unknowns. The Jacobian, its mesh rows first and the nt tool
+   rows last,
+
+     J = [A  B]      B: how the tools' positions move the nodes' contact forces (columns),
+         [C  D]      C: how the nodes move the tools' force balance (rows), D: nt x nt,
+
+   is preconditioned by its block factorisation with M ~ A^-1 (the V-cycle, and the sheet's coarse
+   space) in place of A^-1:
+
+     P^-1 = [I  -M B] [M  0   ] [ I    0]        S = D - C M B  (nt x nt, dense),
+            [0   I  ] [0  S^-1] [-C M  I]
+
+   applied as z = M x_A;  y_T = S^-1 (x_T - C z);  y_A = z - (M B) y_T. With M = A^-1 it is J^-1;
+   with the V-cycle, P^-1 J - I = [M A - I, 0; 0, 0] + a term of rank nt, so a Krylov method
+   takes at most nt iterations more than on the mesh block alone, instead of the tool rows, dense
+   and not an elasticity, entering BoomerAMG's coarsening. The setup applies M to the nt columns
+   of B (W = M B, kept) and factors S: nt + 1 V-cycles per Jacobian; each application one V-cycle,
+   nt dot products and nt vector updates. B, C and D come from products of J with unit vectors of
+   the tool rows (one MatMult and one MatMultTranspose each), so any assembled format serves. */
+static PetscErrorCode BorderSetUp(PC pc, Mat J, PetscInt nt, PetscMPIInt owner)
+{
+  PC_AMGSys   *a    = (PC_AMGSys *)pc->data;
+  const MPI_Comm comm = PetscObjectComm((PetscObject)pc);
+  Vec          e, col;
+  PetscInt     N, nl;
+  PetscMPIInt  rank;
+  PetscScalar *dots;
+  PetscBLASInt bn, info = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(MatGetSize(J, &N, NULL));
+  PetscCall(MatCreateVecs(J, &e, &col));
+  PetscCall(VecGetLocalSize(e, &nl));
+  PetscCall(VecCreateMPI(comm, a->n, PETSC_DETERMINE, &a->xm));
+  PetscCall(VecDuplicate(a->xm, &a->ym));
+  PetscCall(VecDuplicateVecs(a->xm, nt, &a->W));
+  PetscCall(VecDuplicateVecs(a->xm, nt, &a->C));
+  PetscCall(PetscMalloc2(nt * nt, &a->S, nt, &a->piv));
+  PetscCall(PetscMalloc1(nt, &dots));
+  a->nt     = nt;
+  a->towner = owner;
+  for (PetscInt k = 0; k < nt; k++) {
+    const PetscScalar *c;
+    PetscScalar       *m;
+    PetscCall(VecZeroEntries(e));
+    if (rank == owner) PetscCall(VecSetValue(e, N - nt + k, 1.0, INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(e));
+    PetscCall(VecAssemblyEnd(e));
+    /* column k: B_k on the mesh's rows, D(:, k) on the tools' */
+    PetscCall(MatMult(J, e, col));
+    PetscCall(VecGetArrayRead(col, &c));
+    PetscCall(VecGetArrayWrite(a->xm, &m));
+    for (PetscInt i = 0; i < a->n; i++) m[i] = c[i];
+    PetscCall(VecRestoreArrayWrite(a->xm, &m));
+    if (rank == owner)
+      for (PetscInt i = 0; i < nt; i++) a->S[i + nt * k] = c[a->n + i];
+    PetscCall(VecRestoreArrayRead(col, &c));
+    PetscCall(MeshApply(pc, a->xm, a->W[k]));
+    /* row k: C_k */
+    PetscCall(MatMultTranspose(J, e, col));
+    PetscCall(VecGetArrayRead(col, &c));
+    PetscCall(VecGetArrayWrite(a->C[k], &m));
+    for (PetscInt i = 0; i < a->n; i++) m[i] = c[i];
+    PetscCall(VecRestoreArrayWrite(a->C[k], &m));
+    PetscCall(VecRestoreArrayRead(col, &c));
+  }
+  PetscCallMPI(MPI_Bcast(a->S, (PetscMPIInt)(nt * nt), MPIU_SCALAR, owner, comm));
+  for (PetscInt k = 0; k < nt; k++) {
+    PetscCall(VecMDot(a->W[k], nt, a->C, dots));
+    for (PetscInt i = 0; i < nt; i++) a->S[i + nt * k] -= dots[i];
+  }
+  { /* a pivot below 1e-12 of the largest entry: a tool unknown the preconditioner cannot place */
+    PetscReal smax = 0, pmin = PETSC_MAX_REAL;
+    for (PetscInt i = 0; i < nt * nt; i++) smax = PetscMax(smax, PetscAbsScalar(a->S[i]));
+    PetscCall(PetscBLASIntCast(nt, &bn));
+    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, a->S, &bn, a->piv, &info));
+    for (PetscInt i = 0; i < nt; i++) pmin = PetscMin(pmin, PetscAbsScalar(a->S[i + nt * i]));
+    PetscCheck(info == 0 && pmin > 1e-12 * smax, comm, PETSC_ERR_NOT_CONVERGED, "-pc_type amgsys: the Schur complement of the %" PetscInt_FMT " force-driven tool unknowns is singular (smallest pivot %g of %g): a tool driven by force that nothing holds", nt, (double)pmin, (double)smax);
+  }
+  PetscCall(PetscFree(dots));
+  PetscCall(VecDestroy(&e));
+  PetscCall(VecDestroy(&col));
   PetscFunctionReturn(0);
 }
 
@@ -160,17 +319,51 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
 {
   PC_AMGSys          *a = (PC_AMGSys *)pc->data;
   const MPI_Comm      comm = PetscObjectComm((PetscObject)pc);
-  Mat                 A;
+  Mat                 A, Aop;
   PetscBool           ishypre;
   hypre_ParCSRMatrix *pA;
   HYPRE_Int          *dof = NULL;
-  PetscInt            rstart, rend, lerr = 0, gerr;
+  PetscInt            rstart, rend, nm = 0, nt = 0;
+  PetscMPIInt         rank, owner = -1;
+  DM                  dm;
 
   PetscFunctionBeginUser;
-  PetscCall(PCGetOperators(pc, NULL, &A));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PCGetOperators(pc, NULL, &Aop));
+  PetscCall(PCGetDM(pc, &dm));
+  PetscCheck(dm, comm, PETSC_ERR_ARG_WRONGSTATE, "-pc_type amgsys: the preconditioner has no mesh to read the unknowns' components from");
+  PetscCall(MatGetOwnershipRange(Aop, &rstart, &rend));
+  { /* the mesh's rows first on every rank; the tools' rows after them, on one rank (a mismatch on
+       one rank is raised on all: the setup below is collective) */
+    PetscBool   tail = PETSC_FALSE;
+    PetscInt    l[2], g[2];
+    PetscMPIInt lo, go;
+    PetscCall(RowComponents(dm, rstart, rend - rstart, &dof, &nm, &tail));
+    l[0] = !tail;
+    l[1] = rend - rstart - nm;
+    PetscCall(MPIU_Allreduce(l, g, 2, MPIU_INT, MPI_SUM, comm));
+    lo = l[1] > 0 ? rank : -1;
+    PetscCallMPI(MPI_Allreduce(&lo, &go, 1, MPI_INT, MPI_MAX, comm));
+    nt    = g[1];
+    owner = go;
+    if (g[0] || (l[1] > 0 && l[1] != nt)) l[0] = 1;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, l, 1, MPIU_INT, MPI_MAX, comm));
+    if (l[0] || nt > 3 * 64) free(dof);
+    PetscCheck(!l[0], comm, PETSC_ERR_SUP, "-pc_type amgsys: the Jacobian has rows that are neither the mesh's displacement unknowns nor, after them on one rank, force-driven tools' unknowns");
+    PetscCheck(nt <= 3 * 64, comm, PETSC_ERR_SUP, "-pc_type amgsys: %" PetscInt_FMT " force-driven tool unknowns, at most 192", nt);
+  }
+  PetscCall(BorderFree(a));
+  A = Aop;
+  if (nt) { /* the mesh block */
+    IS is;
+    PetscCall(ISCreateStride(comm, nm, rstart, 1, &is));
+    PetscCall(MatCreateSubMatrix(Aop, is, is, MAT_INITIAL_MATRIX, &a->Am));
+    PetscCall(ISDestroy(&is));
+    A = a->Am;
+  }
   PetscCall(PetscObjectTypeCompare((PetscObject)A, MATHYPRE, &ishypre));
+  PetscCall(MatDestroy(&a->hmat));
   if (!ishypre) {
-    PetscCall(MatDestroy(&a->hmat));
     PetscCall(MatConvert(A, MATHYPRE, MAT_INITIAL_MATRIX, &a->hmat));
     A = a->hmat;
   }
@@ -195,17 +388,6 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
       *pv[k] = (HYPRE_ParVector)obj;
     }
   }
-  { /* a mismatch on one rank is raised on all (the setup below is collective) */
-    DM        dm;
-    PetscBool ok = PETSC_FALSE;
-    PetscCall(PCGetDM(pc, &dm));
-    PetscCheck(dm, comm, PETSC_ERR_ARG_WRONGSTATE, "-pc_type amgsys: the preconditioner has no mesh to read the unknowns' components from");
-    PetscCall(RowComponents(dm, a->rstart, a->n, &dof, &ok));
-    lerr = !ok;
-    PetscCall(MPIU_Allreduce(&lerr, &gerr, 1, MPIU_INT, MPI_MAX, comm));
-    if (gerr) free(dof);
-    PetscCheck(!gerr, comm, PETSC_ERR_SUP, "-pc_type amgsys: the Jacobian has rows that are not the mesh's displacement unknowns (force-driven tools add unknowns of their own: use -pc_type hypre there)");
-  }
   PetscCall(HypreCheck(comm, HYPRE_BoomerAMGCreate(&a->amg), "HYPRE_BoomerAMGCreate"));
   HYPRE_BoomerAMGSetPrintLevel(a->amg, 0);
   HYPRE_BoomerAMGSetMaxIter(a->amg, 1);
@@ -222,15 +404,24 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
   HYPRE_BoomerAMGSetRelaxType(a->amg, (HYPRE_Int)a->relax);
   HYPRE_BoomerAMGSetCycleRelaxType(a->amg, 9, 3);
   HYPRE_BoomerAMGSetNumFunctions(a->amg, 3);
-  HYPRE_BoomerAMGSetDofFunc(a->amg, dof); /* taken over by hypre */
+  HYPRE_BoomerAMGSetDofFunc(a->amg, dof); /* taken over by hypre (its first a->n entries read) */
   PetscCall(HypreCheck(comm, HYPRE_BoomerAMGSetup(a->amg, (HYPRE_ParCSRMatrix)pA, a->pb, a->px), "HYPRE_BoomerAMGSetup"));
   if (a->sheetH > 0) { /* the sheet's coarse space at the positions of the Jacobian's iterate */
-    DM        dm;
-    Mat       Aop;
+    Mat         Ablk = a->Am ? a->Am : Aop;
     PetscObject U;
-    PetscCall(PCGetDM(pc, &dm));
-    PetscCall(PCGetOperators(pc, NULL, &Aop));
+    Vec         Um = NULL;
     PetscCall(PetscObjectQuery((PetscObject)Aop, "atrito_iterate", &U));
+    if (U && a->Am) { /* its mesh part */
+      const PetscScalar *ua;
+      PetscScalar       *ma;
+      PetscCall(VecCreateMPI(comm, a->n, PETSC_DETERMINE, &a->um));
+      PetscCall(VecGetArrayRead((Vec)U, &ua));
+      PetscCall(VecGetArrayWrite(a->um, &ma));
+      for (PetscInt i = 0; i < a->n; i++) ma[i] = ua[i];
+      PetscCall(VecRestoreArrayWrite(a->um, &ma));
+      PetscCall(VecRestoreArrayRead((Vec)U, &ua));
+      Um = a->um;
+    } else Um = (Vec)U;
     HYPRE_Complex *b  = hypre_VectorData(hypre_ParVectorLocalVector((hypre_ParVector *)a->pb));
     HYPRE_Complex *xs = hypre_VectorData(hypre_ParVectorLocalVector((hypre_ParVector *)a->px));
     if (!a->sc) PetscCall(SheetCoarseCreate(comm, a->sheetH, a->sheetN, &a->sc));
@@ -248,43 +439,53 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
     }
     PetscCall(VecPlaceArray(a->wb, (PetscScalar *)b));
     PetscCall(VecPlaceArray(a->wx, (PetscScalar *)xs));
-    PetscCall(SheetCoarseSetUp(a->sc, dm, Aop, (Vec)U, a->wb, a->wx));
+    PetscCall(SheetCoarseSetUp(a->sc, dm, Ablk, Um, a->wb, a->wx));
     PetscCall(VecResetArray(a->wb));
     PetscCall(VecResetArray(a->wx));
   }
+  if (nt) PetscCall(BorderSetUp(pc, Aop, nt, owner));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode PCApply_AMGSys(PC pc, Vec x, Vec y)
 {
-  PC_AMGSys          *a = (PC_AMGSys *)pc->data;
-  Mat                 A;
-  hypre_ParCSRMatrix *pA;
-  const PetscScalar  *xa;
-  PetscScalar        *ya;
-  HYPRE_Complex      *b  = hypre_VectorData(hypre_ParVectorLocalVector((hypre_ParVector *)a->pb));
-  HYPRE_Complex      *xs = hypre_VectorData(hypre_ParVectorLocalVector((hypre_ParVector *)a->px));
+  PC_AMGSys         *a = (PC_AMGSys *)pc->data;
+  const MPI_Comm     comm = PetscObjectComm((PetscObject)pc);
+  const PetscInt     nt = a->nt;
+  const PetscScalar *xa;
+  PetscScalar       *ma, *ya, t[3 * 64], mt[3 * 64];
+  PetscMPIInt        rank;
+  PetscBLASInt       bn, one = 1, info = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(PCGetOperators(pc, NULL, &A));
-  PetscCall(MatHYPREGetParCSR(a->hmat ? a->hmat : A, &pA));
+  if (!nt) {
+    PetscCall(MeshApply(pc, x, y));
+    PetscFunctionReturn(0);
+  }
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(VecGetArrayRead(x, &xa));
-  for (PetscInt i = 0; i < a->n; i++) {
-    b[i]  = xa[i];
-    xs[i] = 0;
-  }
+  PetscCall(VecGetArrayWrite(a->xm, &ma));
+  for (PetscInt i = 0; i < a->n; i++) ma[i] = xa[i];
+  if (rank == a->towner)
+    for (PetscInt k = 0; k < nt; k++) t[k] = xa[a->n + k];
+  PetscCall(VecRestoreArrayWrite(a->xm, &ma));
   PetscCall(VecRestoreArrayRead(x, &xa));
-  PetscCall(HypreCheck(PetscObjectComm((PetscObject)pc), HYPRE_BoomerAMGSolve(a->amg, (HYPRE_ParCSRMatrix)pA, a->pb, a->px), "HYPRE_BoomerAMGSolve"));
+  PetscCallMPI(MPI_Bcast(t, (PetscMPIInt)nt, MPIU_SCALAR, a->towner, comm));
+  PetscCall(MeshApply(pc, a->xm, a->ym)); /* z = M x_A */
+  PetscCall(VecMDot(a->ym, nt, a->C, mt));
+  for (PetscInt k = 0; k < nt; k++) t[k] -= mt[k]; /* x_T - C z */
+  PetscCall(PetscBLASIntCast(nt, &bn));
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, a->S, &bn, a->piv, t, &bn, &info));
+  PetscCheck(info == 0, comm, PETSC_ERR_LIB, "-pc_type amgsys: LAPACK getrs failed (%d) on the tools' Schur complement", (int)info);
+  for (PetscInt k = 0; k < nt; k++) mt[k] = -t[k];
+  PetscCall(VecMAXPY(a->ym, nt, mt, a->W)); /* y_A = z - M B y_T */
+  PetscCall(VecGetArrayRead(a->ym, &xa));
   PetscCall(VecGetArrayWrite(y, &ya));
-  for (PetscInt i = 0; i < a->n; i++) ya[i] = xs[i];
+  for (PetscInt i = 0; i < a->n; i++) ya[i] = xa[i];
+  if (rank == a->towner)
+    for (PetscInt k = 0; k < nt; k++) ya[a->n + k] = t[k];
   PetscCall(VecRestoreArrayWrite(y, &ya));
-  if (a->sc) { /* y += P A_c^-1 P^T (x - A y), the residual in hypre's right-hand side, now free */
-    PetscCall(VecPlaceArray(a->wb, (PetscScalar *)b));
-    PetscCall(MatMult(A, y, a->wb));
-    PetscCall(VecAYPX(a->wb, -1.0, x));
-    PetscCall(SheetCoarseApply(a->sc, a->wb, y));
-    PetscCall(VecResetArray(a->wb));
-  }
+  PetscCall(VecRestoreArrayRead(a->ym, &xa));
   PetscFunctionReturn(0);
 }
 
@@ -342,6 +543,7 @@ static PetscErrorCode PCView_AMGSys(PC pc, PetscViewer v)
     PetscCall(SheetCoarseGetSize(a->sc, &nodes, &colours));
     PetscCall(PetscViewerASCIIPrintf(v, "  sheet coarse space: spacing %g, normal (%g, %g, %g), %" PetscInt_FMT " grid nodes (%" PetscInt_FMT " unknowns), %" PetscInt_FMT " colours\n", (double)a->sheetH, (double)a->sheetN[0], (double)a->sheetN[1], (double)a->sheetN[2], nodes, 6 * nodes, colours));
   }
+  if (ascii && a->nt) PetscCall(PetscViewerASCIIPrintf(v, "  bordered by %" PetscInt_FMT " force-driven tool unknowns: block factorisation with their Schur complement (dense, %" PetscInt_FMT " x %" PetscInt_FMT ")\n", a->nt, a->nt, a->nt));
   PetscFunctionReturn(0);
 }
 

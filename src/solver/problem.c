@@ -619,10 +619,10 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   PetscCall(SNESSetApplicationContext(pb->snes, pb));
   PetscCall(SNESGetKSP(pb->snes, &ksp));
   PetscCall(KSPGetPC(ksp, &pc));
-  { /* -pc_type amgsys reads each row's displacement component from the mesh's sections */
+  { /* -pc_type amgsys reads each row's displacement component from the mesh's sections (a force-driven
+       tool's rows, after them, it eliminates through their Schur complement) */
     PetscBool isamg;
     PetscCall(PetscObjectTypeCompare((PetscObject)pc, "amgsys", &isamg));
-    PetscCheck(!isamg || !pb->ntu, pb->comm, PETSC_ERR_SUP, "-pc_type amgsys: the Jacobian has rows that are not the mesh's displacement unknowns (force-driven tools add unknowns of their own: use -pc_type hypre there)");
     if (isamg) PetscCall(PCSetDM(pc, m->dm));
   }
   if (pb->lu_ordering == LU_ORDERING_ND) {
