@@ -52,3 +52,38 @@ rc=$?
 [ "$rc" -ne 0 ] && [ "$(grep -c '^atrito: error' "$OUT/badmat.log")" -eq 1 ] && grep -q "atrito: error: -restart .*the checkpoint's material is j2, this case's -material_type hill48" "$OUT/badmat.log" &&
   ok "a checkpoint of another material type is refused (np=2, exit $rc): $(grep -o 'atrito: error.*' "$OUT/badmat.log" | cut -c1-140)" || not_ok "a checkpoint of another material type was not refused (exit $rc)"
 alone_ok 2 badmat "a checkpoint of another material type" $CASE -material_type hill48 -restart "$OUT/np/checkpoint.h5"
+
+# 5. scripts/slurm/process.sbatch on stand-ins for Slurm's srun (mpiexec on 2 ranks) and sbatch
+#    (records its call): the first job gets SIGUSR1 (Slurm's --signal) once its first checkpoint
+#    is written, submits the next job depending on itself and stops its run; the next job,
+#    started as sbatch would, continues from the checkpoint to the end and marks the process
+#    complete; the continued history is the uninterrupted one's (8 digits: another rank count);
+#    a job submitted again after that exits at once
+SH="$OUT/shim"; mkdir -p "$SH"
+cat >"$SH/srun" <<SHIM
+#!/bin/bash
+$MPI 2 "\$@" </dev/null &
+p=\$!
+trap 'kill -TERM \$p 2>/dev/null; wait \$p; exit 143' TERM
+if [ "\${SHIM_SIGNAL:-0}" = 1 ]; then
+  while kill -0 \$p 2>/dev/null && [ ! -s "\$OUTDIR/slurm/checkpoint.h5" ]; do sleep 0.02; done
+  kill -USR1 \$PPID
+fi
+wait \$p
+SHIM
+printf '#!/bin/bash\necho "sbatch $*" >>"$OUTDIR/sbatch.calls"\n' >"$SH/sbatch"
+chmod +x "$SH/srun" "$SH/sbatch"
+sjob() { env PATH="$SH:$PATH" OUTDIR="$OUT" CASE=cases/block_sphere.opts NAME=slurm CKPT=2 SOLVER=/dev/null "$@" \
+  bash scripts/slurm/process.sbatch -load_steps 40 -load_dt_max 0.025 -output_interval 3; }
+rm -rf "$OUT/slurm" "$OUT/sbatch.calls"
+sjob SLURM_JOB_ID=101 SHIM_SIGNAL=1 >"$OUT/slurm1.log" 2>&1
+c=$(cat "$OUT/sbatch.calls" 2>/dev/null)
+n1=$(($(wc -l <"$OUT/slurm/history.csv") - 1)); [ -e "$OUT/slurm/.complete" ] && done1=1 || done1=0
+sjob SLURM_JOB_ID=102 ATRITO_JOBS=1 >"$OUT/slurm2.log" 2>&1
+[[ "$c" == *"--dependency=afterany:101"* ]] && [ "$done1" = 0 ] && [ "$n1" -ge 2 ] && [ "$n1" -lt 40 ] && grep -q "restart from " "$OUT/slurm2.log" && [ -e "$OUT/slurm/.complete" ] &&
+  grep -q "process complete after 2 job(s)" "$OUT/slurm2.log" &&
+  ok "scripts/slurm/process.sbatch: the first job signalled after $n1 steps resubmitted itself (afterany) and stopped; the second continued from the checkpoint to the end" ||
+  { not_ok "scripts/slurm/process.sbatch: sbatch call '$c', $n1 steps in the first job"; tail -n 3 "$OUT/slurm1.log" "$OUT/slurm2.log" | indent; }
+check "$OUT/ref" "$OUT/slurm" 8 "process.sbatch: 2 jobs on 2 ranks against the 1-rank run"
+sjob SLURM_JOB_ID=103 >"$OUT/slurm3.log" 2>&1 && grep -q "complete" "$OUT/slurm3.log" && [ "$(wc -l <"$OUT/sbatch.calls")" -eq 1 ] &&
+  ok "process.sbatch submitted again after the end: exits at once" || not_ok "process.sbatch after the end: $(tail -n 1 "$OUT/slurm3.log")"

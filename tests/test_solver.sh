@@ -110,7 +110,7 @@ atrito 1 disk_lu $DISK
 for np in 1 2; do
   atrito $np disk_amg$np $DISK -options_file cases/solver_amg_sheet.opts &&
     compare "$OUT/disk_lu/history.csv" "$OUT/disk_amg$np/history.csv" 6 "whole blank with friction: BiCGStab+BoomerAMG (np=$np) against LU"
-  most=$(grep -o "krylov [0-9]* (most [0-9]*)" "$OUT/disk_amg$np.log" | awk '{gsub(/\)/,"",$4); if ($4 > m) m = $4} END {print m + 0}')
+  most=$(grep -o "krylov [0-9]* (most [0-9]*)" "$OUT/disk_amg$np.log" | awk '{gsub(/\)/,"",$4); v = $4 + 0; if (v > m) m = v} END {print m + 0}')
   n=$(grep -c "^step .* krylov [0-9]* (most [0-9]*)" "$OUT/disk_amg$np.log")
   [ "$n" -ge 3 ] && [ "$most" -ge 1 ] && [ "$most" -le 50 ] && ok "Krylov iterations on the progress line of every step ($n steps, np=$np), at most $most per Newton iteration" ||
     not_ok "Krylov iterations: $n step lines, most $most (np=$np)"
@@ -123,7 +123,7 @@ done
 #     most 50 Krylov iterations per Newton iteration, fewer than PCHYPRE's (which mixes the
 #     components there); the Jacobian in hypre's format and in AIJ (converted at each setup)
 QUARTER="-options_file cases/hemisphere_friction_fine.opts -blank_core_cells 4 -blank_radial_cells 10 -blank_layers 2 -tool_punch_motion 0,0,3 -load_steps 3 -load_dt_max 0.34 -output_interval 0"
-most_of() { grep -o "krylov [0-9]* (most [0-9]*)" "$1" | awk '{gsub(/\)/,"",$4); if ($4 > m) m = $4} END {print m + 0}'; }
+most_of() { grep -o "krylov [0-9]* (most [0-9]*)" "$1" | awk '{gsub(/\)/,"",$4); v = $4 + 0; if (v > m) m = v} END {print m + 0}'; }
 atrito 1 quarter_lu $QUARTER
 for np in 1 2; do
   atrito $np quarter_sys$np $QUARTER -options_file cases/solver_amgsys.opts &&

@@ -9,7 +9,8 @@
 # at 45: Hill's r-values with r0 + r90 > 2 r45), the largest thinning at the punch's profile
 # (initial radius 20 to 30 mm), the largest punch force within 15 % of the classical estimate
 # pi d t UTS (d the punch's diameter plus t, UTS the engineering tensile strength of the Swift
-# law, K n^n e^-n: 49.2 kN); the holder's penalty from its force.
+# law, K n^n e^-n: 49.2 kN); the holder's penalty from its force; the process with the iterative
+# solver (cases/solver_process.opts) at 2 ranks against LU.
 set -u
 cd "$(dirname "$0")/.." && . tests/lib.sh
 OUT=$(test_out tutorial)
@@ -54,4 +55,16 @@ f, n = (float(x) for x in re.search(r"K_N at most ([0-9.e+]+) N over 0.0001 h \(
 good = abs(f * n / 4000 - 1) < 1e-5 and 100 < n < 205 and abs(k / (205 * f / 1e-4) - 1) < 1e-2
 print(("ok - " if good else "not ok - ") + f"the holder's penalty from its force (-contact_penalty_force_penetration 1e-4): 4000 N over {n:g} nodes under it, {f:.4g} N each; its 205 nodes' penalties sum to {k:.6g} N/mm against {205 * f / 1e-4:.6g}")
 PYEOF
+}
+
+# the same process with the iterative solver for processes (cases/solver_process.opts: BiCGStab,
+# amgsys bordered by the holder's unknowns) at 2 ranks: the displacements at every shared output
+# time within 1e-6 of the largest against LU at 1 rank (end of the draw and after springback
+# among them), and at most 50 Krylov iterations in any Newton iteration of any stage
+atrito 2 cup_sys2 -options_file $C -options_file cases/solver_process.opts -output_interval 5 && {
+  pycheck solver_fields "$OUT/cup1" "$OUT/cup_sys2" 2 1e-6 "cylindrical cup: BiCGStab + amgsys (np=2) against LU (np=1)"
+  most=$(grep -o "krylov [0-9]* (most [0-9]*)" "$OUT/cup_sys2.log" | awk '{gsub(/\)/,"",$4); v = $4 + 0; if (v > m) m = v} END {print m + 0}')
+  st=$(grep -o '^stage [a-z]*' "$OUT/cup_sys2.log" | sort -u | wc -l)
+  [ "$most" -ge 1 ] && [ "$most" -le 50 ] && [ "$st" -eq 4 ] && ok "cylindrical cup with the iterative solver: at most $most Krylov iterations per Newton iteration through its 4 stages ($(grep -o 'done: .*' "$OUT/cup_sys2.log"))" ||
+    not_ok "cylindrical cup with the iterative solver: most $most Krylov iterations, $st stages"
 }
