@@ -16,7 +16,8 @@ PetscErrorCode SheetCoarseCreate(MPI_Comm comm, PetscReal H, const PetscReal nor
    which A was assembled, in A's row layout), the coarse operator P^T A P and its factors; wz, wy:
    work vectors of A's layout, or NULL (made and freed here) */
 PetscErrorCode SheetCoarseSetUp(SheetCoarse sc, DM dm, Mat A, Vec U, Vec wz, Vec wy);
-/* y += P (P^T A P)^-1 P^T r */
+/* y += P (P^T A P)^-1 P^T r; y is set to NaN when r is not finite or the coarse solve fails:
+   the Krylov method then stops (KSP_DIVERGED_NANORINF) and Newton retries the step */
 PetscErrorCode SheetCoarseApply(SheetCoarse sc, Vec r, Vec y);
 /* the basis P as an assembled matrix (rows: A's; columns: 6 per active coarse node) and the
    coarse operator (on rank 0; NULL on the others): for tests */

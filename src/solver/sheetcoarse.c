@@ -502,7 +502,13 @@ PetscErrorCode SheetCoarseApply(SheetCoarse sc, Vec r, Vec y)
   } else PetscCallMPI(MPI_Reduce(sc->w, NULL, (PetscMPIInt)N, MPIU_REAL, MPI_SUM, 0, sc->comm));
   PetscCallMPI(MPI_Bcast(sc->xv, (PetscMPIInt)(N + 1), MPIU_REAL, 0, sc->comm));
   gbad = sc->xv[N] != 0;
-  PetscCheck(!gbad, sc->comm, PETSC_ERR_FP, "-pc_amgsys_sheet_spacing %g: the coarse solve failed or gave a correction that is not finite", (double)sc->H);
+  if (gbad) { /* a residual that is not finite (a Krylov breakdown) or a failed coarse solve: the
+                 preconditioned vector is made not finite, so that the Krylov method stops on it
+                 (KSP_DIVERGED_NANORINF) and the step is retried smaller, as for any failed solve */
+    PetscCall(PetscInfo(NULL, "-pc_amgsys_sheet_spacing %g: the coarse solve failed or gave a correction that is not finite\n", (double)sc->H));
+    PetscCall(VecSet(y, NAN));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecGetArray(y, &ya));
   for (PetscInt v = 0; v < sc->nv; v++) {
     PetscInt  g[4];
