@@ -2,7 +2,7 @@
 # Checkpoint and restart: a run stopped (cleanly, or killed with SIGKILL at a random moment) and
 # restarted from its checkpoint gives the same history rows as one that ran through (10 digits at
 # the same rank count, 8 on another rank count); histories and fields are continued, not lost or
-# duplicated.
+# duplicated; the iterative solver for processes restarted on another number of ranks.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -87,3 +87,14 @@ sjob SLURM_JOB_ID=102 ATRITO_JOBS=1 >"$OUT/slurm2.log" 2>&1
 check "$OUT/ref" "$OUT/slurm" 8 "process.sbatch: 2 jobs on 2 ranks against the 1-rank run"
 sjob SLURM_JOB_ID=103 >"$OUT/slurm3.log" 2>&1 && grep -q "complete" "$OUT/slurm3.log" && [ "$(wc -l <"$OUT/sbatch.calls")" -eq 1 ] &&
   ok "process.sbatch submitted again after the end: exits at once" || not_ok "process.sbatch after the end: $(tail -n 1 "$OUT/slurm3.log")"
+
+# 6. the iterative solver for processes (cases/solver_process.opts: amgsys bordered by a
+#    force-driven holder's unknowns, the sheet's coarse space): a 1-rank run stopped after 9
+#    steps, continued from its checkpoint on 2 ranks, against the uninterrupted 1-rank run to the
+#    solver's tolerance (6 digits)
+FT="-options_file cases/forcetool_holder.opts -options_file cases/solver_process.opts -output_interval 5"
+$MPI 1 $A $FT -output_dir "$OUT/ft_ref" </dev/null >"$OUT/ft_ref.log" 2>&1 || not_ok "force-driven holder, iterative solver: the reference run failed"
+$MPI 1 $A $FT -output_dir "$OUT/ft_np" -checkpoint_interval 4 -load_max_steps 9 </dev/null >"$OUT/ft_np1.log" 2>&1
+$MPI 2 $A $FT -output_dir "$OUT/ft_np" -restart "$OUT/ft_np/checkpoint.h5" </dev/null >"$OUT/ft_np2.log" 2>&1 || not_ok "force-driven holder, iterative solver: the restart on 2 ranks failed"
+grep -q "restart from .*: step 8," "$OUT/ft_np2.log" && ok "force-driven holder, iterative solver: restarted on 2 ranks from the checkpoint of step 8" || not_ok "force-driven holder: the restart did not start from step 8"
+compare "$OUT/ft_ref/history.csv" "$OUT/ft_np/history.csv" 6 "force-driven holder, iterative solver: 1-rank checkpoint continued on 2 ranks: history.csv"
