@@ -219,6 +219,22 @@ int main(int argc, char **argv)
       PetscCall(VecNorm(pr, NORM_INFINITY, &a));
       PetscCall(VecNorm(pres, NORM_INFINITY, &b));
       CHECK_ALL(a > 0 && b <= 1e-6 * a, "spacing %g: P^T (r - A y) = %.2e of P^T r after the correction", (double)H, (double)(b / a));
+      /* a residual that is not finite (a Krylov breakdown): the correction is NaN everywhere, so
+         that the Krylov method stops on it, not an error that ends the run */
+      if (rank == 0 && lo < hi) PetscCall(VecSetValue(r, lo, NAN, INSERT_VALUES));
+      PetscCall(VecAssemblyBegin(r));
+      PetscCall(VecAssemblyEnd(r));
+      PetscCall(VecSet(yv, 0));
+      PetscCall(SheetCoarseApply(sc, r, yv));
+      {
+        PetscInt           nl, nnan = 0;
+        const PetscScalar *ya;
+        PetscCall(VecGetLocalSize(yv, &nl));
+        PetscCall(VecGetArrayRead(yv, &ya));
+        for (PetscInt i = 0; i < nl; i++) nnan += PetscIsInfOrNanScalar(ya[i]) ? 1 : 0;
+        PetscCall(VecRestoreArrayRead(yv, &ya));
+        CHECK_ALL(nnan == nl, "spacing %g: a residual that is not finite on one rank gives a correction that is NaN on every rank (%" PetscInt_FMT " of %" PetscInt_FMT " local entries here)", (double)H, nnan, nl);
+      }
       PetscCall(VecDestroy(&r));
       PetscCall(VecDestroy(&yv));
       PetscCall(VecDestroy(&res));
