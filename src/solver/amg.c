@@ -79,7 +79,8 @@ typedef struct {
   PetscInt        nm;         /* local mesh rows (the first nm of the local rows)             */
   PetscInt        nt;         /* tool unknowns in all (0: none)                               */
   PetscMPIInt     towner;     /* the rank that holds their rows                               */
-  Mat             Am;         /* the mesh block A                                             */
+  HYPRE_IJMatrix  ij;         /* the mesh block A in hypre's format (hmat wraps it)           */
+  PetscBool       border;     /* the operator has tool rows: hmat is its mesh block            */
   Vec            *W, *C;      /* M B_k and the rows C_k of the border, on the mesh's rows     */
   Vec             xm, ym, um; /* work on the mesh's rows; um: the iterate's mesh part         */
   PetscScalar    *S;          /* the Schur complement D - C M B, factored (LAPACK getrf)      */
@@ -110,7 +111,12 @@ static PetscErrorCode BorderFree(PC_AMGSys *a)
     PetscCall(VecDestroyVecs(a->nt, &a->W));
     PetscCall(VecDestroyVecs(a->nt, &a->C));
   }
-  PetscCall(MatDestroy(&a->Am));
+  if (a->ij) { /* after hmat, which points to its matrix */
+    PetscCall(MatDestroy(&a->hmat));
+    HYPRE_IJMatrixDestroy(a->ij);
+    a->ij = NULL;
+  }
+  a->border = PETSC_FALSE;
   PetscCall(VecDestroy(&a->xm));
   PetscCall(VecDestroy(&a->ym));
   PetscCall(VecDestroy(&a->um));
@@ -206,7 +212,7 @@ static PetscErrorCode MeshApply(PC pc, Vec x, Vec y)
   HYPRE_Complex      *xs = hypre_VectorData(hypre_ParVectorLocalVector((hypre_ParVector *)a->px));
 
   PetscFunctionBeginUser;
-  if (a->Am) A = a->Am;
+  if (a->border) A = a->hmat;
   else PetscCall(PCGetOperators(pc, NULL, &A));
   PetscCall(MatHYPREGetParCSR(a->hmat ? a->hmat : A, &pA));
   PetscCall(VecGetArrayRead(x, &xa));
@@ -226,6 +232,62 @@ static PetscErrorCode MeshApply(PC pc, Vec x, Vec y)
     PetscCall(SheetCoarseApply(a->sc, a->wb, y));
     PetscCall(VecResetArray(a->wb));
   }
+  PetscFunctionReturn(0);
+}
+
+/* The mesh block of a Jacobian whose last nt global rows and columns are tools' unknowns, in
+   hypre's format: the mesh's rows and columns are the first N - nt of the global numbering (the
+   tools' come after all of them, on the last rank), so a row keeps its global index and drops the
+   tools' columns. Row by row from the assembled matrix (MatGetRow), without an intermediate copy:
+   the Jacobian, this block and BoomerAMG's hierarchy are the solver's memory. */
+static PetscErrorCode MeshBlock(Mat J, PetscInt rstart, PetscInt nm, PetscInt nt, HYPRE_IJMatrix *ij, Mat *B)
+{
+  const MPI_Comm     comm = PetscObjectComm((PetscObject)J);
+  PetscInt           N, ncols, mx = 0;
+  const PetscInt    *cols;
+  const PetscScalar *vals;
+  HYPRE_Int         *dsz, *osz;
+  HYPRE_BigInt      *hc;
+  HYPRE_Complex     *hv;
+  void              *obj;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetSize(J, &N, NULL));
+  const PetscInt Nm = N - nt;
+  PetscCall(PetscMalloc2(nm, &dsz, nm, &osz));
+  for (PetscInt i = 0; i < nm; i++) {
+    PetscCall(MatGetRow(J, rstart + i, &ncols, &cols, NULL));
+    dsz[i] = osz[i] = 0;
+    for (PetscInt k = 0; k < ncols; k++) {
+      if (cols[k] >= Nm) continue;
+      if (cols[k] >= rstart && cols[k] < rstart + nm) dsz[i]++;
+      else osz[i]++;
+    }
+    mx = PetscMax(mx, ncols);
+    PetscCall(MatRestoreRow(J, rstart + i, &ncols, &cols, NULL));
+  }
+  PetscCall(HypreCheck(comm, HYPRE_IJMatrixCreate(comm, (HYPRE_BigInt)rstart, (HYPRE_BigInt)(rstart + nm - 1), (HYPRE_BigInt)rstart, (HYPRE_BigInt)(rstart + nm - 1), ij), "HYPRE_IJMatrixCreate"));
+  PetscCall(HypreCheck(comm, HYPRE_IJMatrixSetObjectType(*ij, HYPRE_PARCSR), "HYPRE_IJMatrixSetObjectType"));
+  PetscCall(HypreCheck(comm, HYPRE_IJMatrixSetDiagOffdSizes(*ij, dsz, osz), "HYPRE_IJMatrixSetDiagOffdSizes"));
+  PetscCall(HypreCheck(comm, HYPRE_IJMatrixInitialize(*ij), "HYPRE_IJMatrixInitialize"));
+  PetscCall(PetscFree2(dsz, osz));
+  PetscCall(PetscMalloc2(PetscMax(mx, 1), &hc, PetscMax(mx, 1), &hv));
+  for (PetscInt i = 0; i < nm; i++) {
+    HYPRE_Int    n = 0;
+    HYPRE_BigInt row = (HYPRE_BigInt)(rstart + i);
+    PetscCall(MatGetRow(J, rstart + i, &ncols, &cols, &vals));
+    for (PetscInt k = 0; k < ncols; k++)
+      if (cols[k] < Nm) {
+        hc[n]   = (HYPRE_BigInt)cols[k];
+        hv[n++] = (HYPRE_Complex)vals[k];
+      }
+    PetscCall(MatRestoreRow(J, rstart + i, &ncols, &cols, &vals));
+    PetscCall(HypreCheck(comm, HYPRE_IJMatrixSetValues(*ij, 1, &n, &row, hc, hv), "HYPRE_IJMatrixSetValues"));
+  }
+  PetscCall(PetscFree2(hc, hv));
+  PetscCall(HypreCheck(comm, HYPRE_IJMatrixAssemble(*ij), "HYPRE_IJMatrixAssemble"));
+  PetscCall(HypreCheck(comm, HYPRE_IJMatrixGetObject(*ij, &obj), "HYPRE_IJMatrixGetObject"));
+  PetscCall(MatCreateFromParCSR((hypre_ParCSRMatrix *)obj, MATHYPRE, PETSC_USE_POINTER, B));
   PetscFunctionReturn(0);
 }
 
@@ -353,19 +415,18 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
     PetscCheck(nt <= 3 * 64, comm, PETSC_ERR_SUP, "-pc_type amgsys: %" PetscInt_FMT " force-driven tool unknowns, at most 192", nt);
   }
   PetscCall(BorderFree(a));
-  A = Aop;
-  if (nt) { /* the mesh block */
-    IS is;
-    PetscCall(ISCreateStride(comm, nm, rstart, 1, &is));
-    PetscCall(MatCreateSubMatrix(Aop, is, is, MAT_INITIAL_MATRIX, &a->Am));
-    PetscCall(ISDestroy(&is));
-    A = a->Am;
-  }
-  PetscCall(PetscObjectTypeCompare((PetscObject)A, MATHYPRE, &ishypre));
   PetscCall(MatDestroy(&a->hmat));
-  if (!ishypre) {
-    PetscCall(MatConvert(A, MATHYPRE, MAT_INITIAL_MATRIX, &a->hmat));
-    A = a->hmat;
+  A = Aop;
+  if (nt) { /* the mesh block, copied straight into hypre's format */
+    PetscCall(MeshBlock(Aop, rstart, nm, nt, &a->ij, &a->hmat));
+    a->border = PETSC_TRUE;
+    A         = a->hmat;
+  } else {
+    PetscCall(PetscObjectTypeCompare((PetscObject)A, MATHYPRE, &ishypre));
+    if (!ishypre) {
+      PetscCall(MatConvert(A, MATHYPRE, MAT_INITIAL_MATRIX, &a->hmat));
+      A = a->hmat;
+    }
   }
   PetscCall(MatHYPREGetParCSR(A, &pA));
   PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
@@ -407,11 +468,11 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
   HYPRE_BoomerAMGSetDofFunc(a->amg, dof); /* taken over by hypre (its first a->n entries read) */
   PetscCall(HypreCheck(comm, HYPRE_BoomerAMGSetup(a->amg, (HYPRE_ParCSRMatrix)pA, a->pb, a->px), "HYPRE_BoomerAMGSetup"));
   if (a->sheetH > 0) { /* the sheet's coarse space at the positions of the Jacobian's iterate */
-    Mat         Ablk = a->Am ? a->Am : Aop;
+    Mat         Ablk = a->border ? a->hmat : Aop;
     PetscObject U;
     Vec         Um = NULL;
     PetscCall(PetscObjectQuery((PetscObject)Aop, "atrito_iterate", &U));
-    if (U && a->Am) { /* its mesh part */
+    if (U && a->border) { /* its mesh part */
       const PetscScalar *ua;
       PetscScalar       *ma;
       PetscCall(VecCreateMPI(comm, a->n, PETSC_DETERMINE, &a->um));
