@@ -408,10 +408,12 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
     PetscCallMPI(MPI_Allreduce(&lo, &go, 1, MPI_INT, MPI_MAX, comm));
     nt    = g[1];
     owner = go;
-    if (g[0] || (l[1] > 0 && l[1] != nt)) l[0] = 1;
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    if (g[0] || (l[1] > 0 && l[1] != nt) || (nt > 0 && go != size - 1)) l[0] = 1; /* the tools' rows: the global tail */
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, l, 1, MPIU_INT, MPI_MAX, comm));
     if (l[0] || nt > 3 * 64) free(dof);
-    PetscCheck(!l[0], comm, PETSC_ERR_SUP, "-pc_type amgsys: the Jacobian has rows that are neither the mesh's displacement unknowns nor, after them on one rank, force-driven tools' unknowns");
+    PetscCheck(!l[0], comm, PETSC_ERR_SUP, "-pc_type amgsys: the Jacobian has rows that are neither the mesh's displacement unknowns nor, after them on the last rank, force-driven tools' unknowns");
     PetscCheck(nt <= 3 * 64, comm, PETSC_ERR_SUP, "-pc_type amgsys: %" PetscInt_FMT " force-driven tool unknowns, at most 192", nt);
   }
   PetscCall(BorderFree(a));
