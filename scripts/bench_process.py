@@ -40,9 +40,10 @@ def run(binary, p, logdir, timeout):
         "-memory_view", "-output_dir", os.path.join(logdir, "out_" + tag(p))]
     path = os.path.join(logdir, tag(p) + ".log")
     load = os.getloadavg()[0]
+    mi = benchutil.machine_info(ROOT)
     t0 = time.monotonic()
     with open(path, "w") as f:
-        f.write("# " + " ".join(cmd) + "\n# load %.2f\n" % load)
+        f.write("# " + " ".join(cmd) + "\n# load %.2f\n# commit %s%s\n" % (load, mi["commit"], " (with local changes)" if mi["dirty"] else ""))
         f.flush()
         try:
             subprocess.run(["nice"] + cmd, cwd=ROOT, env=benchutil.run_env(), stdout=f, stderr=subprocess.STDOUT, timeout=timeout)
@@ -68,7 +69,9 @@ def parse(path, p):
     wall = float(steps[-1][3])
     cells = n * n * l
     gib = float(mem.group(1)) / 2**30 if mem else None
-    return dict(cells=cells, ranks=ranks, steps=len(steps), stages=sorted(set(s[4] for s in steps)), its=sum(its), kry=sum(kry), most=most,
+    ended = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime(os.path.getmtime(path)))
+    commit = re.search(r"^# commit (.+)$", out, re.M)
+    return dict(ended=ended, commit=commit.group(1) if commit else "unknown", cells=cells, ranks=ranks, steps=len(steps), stages=sorted(set(s[4] for s in steps)), its=sum(its), kry=sum(kry), most=most,
                 cuts=cuts, per_it=wall / max(sum(its), 1), wall=wall, gib=gib, per100k=gib / cells * 1e5 if gib else None,
                 load=float(load.group(1)) if load else None, per_step=" ".join(f"{a}/{b}" for a, b in zip(its, kry)))
 
@@ -78,7 +81,8 @@ def section(rows):
              f"The mild steel square cup (`{CASE}`: holder driven by its 19.6 kN force, the punch 40 mm) on a box mesh of",
              "the quarter blank, N x N hexahedra in the plane and L through the thickness, with",
              f"`{SOLVER}` (BiCGStab, `-pc_type amgsys` bordered by the holder's unknowns, the sheet's coarse",
-             "space), through its first steps (`-load_max_steps`). Newton/Krylov iterations per step in the last column.", "",
+             "space), through its first steps (`-load_max_steps`). Newton/Krylov iterations per step in the last column.",
+             "The runs (hexahedra: end, commit): " + "; ".join(f"{r['cells']:,}: {r['ended']}, {r['commit']}" for r in rows) + ".", "",
              "| hexahedra | ranks | load at start | steps | stages | Newton its | cuts | Krylov its | most per Newton it | s per Newton it | peak GiB | GiB per 100 000 | its/Krylov per step |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:

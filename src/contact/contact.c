@@ -610,7 +610,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     PetscCheck(c->reg_rel >= 0 && c->reg_rel < 1, comm, PETSC_ERR_USER_INPUT, "-contact_regularization_relative %g must lie in [0, 1)", (double)c->reg_rel);
   }
   c->kforce_pen = 1e-4;
-  PetscCall(PetscOptionsReal("-contact_penalty_force_penetration", "Automatic penalty of a tool driven by force: at most its largest force over its slave nodes divided by this fraction of each node's element size (the penetration at that share of the force; 0: E A / h alone)", "doc/contact.md", c->kforce_pen, &c->kforce_pen, NULL));
+  PetscCall(PetscOptionsReal("-contact_penalty_force_penetration", "Automatic penalty of a tool driven by force: at most its largest force's share per node under it (projected on it at the start, within an element size) divided by this fraction of each node's element size (the penetration at that share of the force; 0: E A / h alone)", "doc/contact.md", c->kforce_pen, &c->kforce_pen, NULL));
   PetscCheck(c->kforce_pen >= 0 && c->kforce_pen < 1, comm, PETSC_ERR_USER_INPUT, "-contact_penalty_force_penetration %g must lie in [0, 1)", (double)c->kforce_pen);
   PetscCall(PetscOptionsReal("-contact_gap_smoothing", "Width (a length) over which the normal contact force is smoothed about gap 0 (C1 quadratic; 0: the plain bracket)", "doc/contact.md", c->law.delta, &c->law.delta, NULL));
   PetscCheck(c->law.delta >= 0 && !PetscIsInfOrNanReal(c->law.delta), comm, PETSC_ERR_USER_INPUT, "-contact_gap_smoothing %g must be >= 0", (double)c->law.delta);

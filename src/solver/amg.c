@@ -315,7 +315,7 @@ static PetscErrorCode BorderSetUp(PC pc, Mat J, PetscInt nt, PetscMPIInt owner)
   PC_AMGSys   *a    = (PC_AMGSys *)pc->data;
   const MPI_Comm comm = PetscObjectComm((PetscObject)pc);
   Vec          e, col;
-  PetscInt     N, nl;
+  PetscInt     N;
   PetscMPIInt  rank;
   PetscScalar *dots;
   PetscBLASInt bn, info = 0;
@@ -324,7 +324,6 @@ static PetscErrorCode BorderSetUp(PC pc, Mat J, PetscInt nt, PetscMPIInt owner)
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(MatGetSize(J, &N, NULL));
   PetscCall(MatCreateVecs(J, &e, &col));
-  PetscCall(VecGetLocalSize(e, &nl));
   PetscCall(VecCreateMPI(comm, a->n, PETSC_DETERMINE, &a->xm));
   PetscCall(VecDuplicate(a->xm, &a->ym));
   PetscCall(VecDuplicateVecs(a->xm, nt, &a->W));
