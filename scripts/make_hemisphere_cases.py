@@ -92,14 +92,12 @@ EXTRA = {"_xfine": "# steps of up to 10 Newton iterations let the increment grow
 # most 5 Newton iterations, the linear extrapolation and the committed contact held on the
 # frictionless tools in a step's first iteration (the code's defaults)
 STEPPING = "-load_steps 40\n-load_dt_max 0.05\n"
-# the Coons cases on the seed and refined meshes: the predictor's curvature term (half the
-# quadratic term through the last three converged states), the committed contact held on every
-# tool (friction: the moving punch and the die at rest) in a step's first iteration, increments
-# from 1/40 of the travel doubling up to 1/15: 89 and 88 Newton iterations on the seed mesh against
-# 115 and 144 (doc/performance.md, Newton iterations, "The seed cases' solution strategy")
-STEPPING_NEWTON = ("# Newton strategy (doc/performance.md, Newton iterations): the predictor's curvature term, the\n"
-                   "# committed contact held in a step's first iteration, increments doubling up to 1/15 of the travel\n"
-                   "-load_steps 40\n-load_dt_max 0.0666666666666667\n-load_grow_factor 2\n-load_predictor_curvature 0.5\n")
+# the Coons cases on the seed and refined meshes: 15 equal increments of the travel on the code's
+# default stepping (the extrapolation predictor with its curvature term), the committed contact held
+# on every tool in a step's first iteration with friction (the moving punch and the die at rest):
+# 75 and 80 Newton iterations on the seed mesh (doc/performance.md, Newton iterations)
+STEPPING_NEWTON = ("# 15 equal steps on the default stepping (doc/performance.md, Newton iterations)\n"
+                   "-load_steps 15\n")
 KEEP_ALL = "-newton_keep_contact all\n"
 # Coons tools: the paper's construction with each punch patch split 3 x 3 (27 + 1 plane) and the
 # die fillet in 4 sectors, so that the tool surfaces lie within 0.02 mm of the sphere and torus;

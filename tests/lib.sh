@@ -18,9 +18,9 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # The tests kill at once: an error's exit status and its one line are the same either way.
 export OMPI_MCA_odls_base_sigkill_timeout=${OMPI_MCA_odls_base_sigkill_timeout:-0}
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
-# the code's default load stepping and predictor, given on the command line where a test measures
-# them on a seed case whose options file sets its own (cases/hemisphere_friction*.opts)
-DEFSTEP="-load_dt_max 0.05 -load_grow_factor 1.5 -load_predictor_curvature 0"
+# the seed cases' stepping of before 2026-11-29 (first increment 1/40 grown by 1.5 up to 1/20, the
+# linear extrapolation), given on the command line where a test measures a state of that run
+DEFSTEP="-load_steps 40 -load_dt_max 0.05 -load_grow_factor 1.5 -load_predictor_curvature 0"
 PY=${PYTHON:-/usr/bin/python3}
 TEST_OUT=${TEST_OUT:-build/test-out}
 A=bin/atrito

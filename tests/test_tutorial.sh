@@ -2,9 +2,11 @@
 # The tutorial's cylindrical cup (doc/tutorial.md, cases/cylindrical_cup.opts): a process set up
 # from the docs alone, run on the code's defaults. Checks: the options file sets no contact option
 # but the sets and the friction, and no stage increment bound; the whole process (close, draw,
-# release, springback) runs at 1 and 2 ranks, whose histories agree to 1e-8 (the Newton iteration
-# count may differ by two in the first draw step, which ends near its tolerance; mean_penetration
-# is written with 7 digits, its last one rounding either way); the post-processing of the
+# release, springback) runs at 1 and 2 ranks, whose histories agree to 1e-7 (the first draw step
+# starts from the tangent predictor, whose linear system at the closed state is ill-conditioned:
+# three direct solvers give corrections 2 % apart, so its Newton iterations may differ by two and
+# its state by the Newton tolerance, 3.8e-8 measured; mean_penetration is written with 7 digits,
+# its last one rounding either way); the post-processing of the
 # tutorial (scripts/cylcup_post.py) on its output: ears at 0 and 90 degrees (the rim draws in more
 # at 45: Hill's r-values with r0 + r90 > 2 r45), the largest thinning at the punch's profile
 # (initial radius 20 to 30 mm), the largest punch force within 15 % of the classical estimate
@@ -27,7 +29,7 @@ atrito 1 cup1 -options_file $C -output_interval 5 && atrito 2 cup2 -options_file
   [ -n "$d1" ] && [ -n "$d2" ] && grep -q '^stage springback' "$OUT/cup1.log" && ok "cylindrical cup on the defaults: close, draw, release, springback at 1 rank ($d1) and 2 ($d2)" ||
     not_ok "cylindrical cup: '$d1' '$d2'"
   for f in history.csv contact.csv; do
-    $PY tests/compare_csv.py "$OUT/cup1/$f" "$OUT/cup2/$f" --rtol 1e-8 --atol 1e-9 --skip 'residual_*,mean_penetration' --int-tol newton_its=2 --label "cylindrical cup np=1 against np=2, $f, 1e-8"
+    $PY tests/compare_csv.py "$OUT/cup1/$f" "$OUT/cup2/$f" --rtol 1e-7 --atol 1e-9 --skip 'residual_*,mean_penetration' --int-tol newton_its=2 --label "cylindrical cup np=1 against np=2, $f, 1e-7"
   done
   if $PY scripts/cylcup_post.py "$OUT/cup1" --plot "$OUT/cup.png" >"$OUT/post.txt" 2>&1; then
     $PY - "$OUT/post.txt" <<'PYEOF'

@@ -55,7 +55,7 @@ PetscErrorCode StagesSetFromOptions(MPI_Comm comm, Stages *sg, PetscInt load_ste
     PetscCall(PetscStrncpy(sg->s[0].name, "load", sizeof(sg->s[0].name)));
     sg->s[0].t0     = 0;
     sg->s[0].t1     = 1;
-    sg->s[0].dt0    = 1.0 / load_steps;
+    sg->s[0].dt0    = PetscMin(1.0 / load_steps, dt_max); /* the first increment within -load_dt_max, as with stages */
     sg->s[0].dt_max = dt_max;
     sg->s[0].dt_min = dt_min;
     sg->s[0].ntools = sg->s[0].nbcs = -1;

@@ -17,6 +17,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   st->cut           = 0.5;
   st->grow          = 1.5;
   st->grow_its      = 5;
+  st->curvature     = 0.5;
   st->shrink        = 0.5;
   st->shrink_its    = 0;
   st->max_cuts      = 10;
@@ -67,7 +68,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
       PetscCall(PetscOptionsEList("-load_predictor", "Start of each step: the committed state, the extrapolation of the last two, the tangent response to the load increment, or auto (extrapolation when there is a previous step, else tangent)", NULL, preds, 4, preds[p], &p, NULL));
       st->predictor = (Predictor)p;
     }
-    PetscCall(PetscOptionsReal("-load_predictor_curvature", "Extrapolation predictor: the share beta of the quadratic term through the last three converged states added to the linear extrapolation (0: linear, 1: quadratic; doc/performance.md, Newton iterations)", NULL, st->curvature, &st->curvature, NULL));
+    PetscCall(PetscOptionsReal("-load_predictor_curvature", "Extrapolation predictor: the share beta of the quadratic term through the last three converged states added to the linear extrapolation (0: linear, 1: quadratic; default 0.5: doc/notes/contact-defaults.md)", NULL, st->curvature, &st->curvature, NULL));
     PetscCheck(st->curvature >= 0 && st->curvature <= 1, comm, PETSC_ERR_USER_INPUT, "-load_predictor_curvature %g must lie in [0, 1]", (double)st->curvature);
     PetscCheck(st->dt_max > 0 && st->dt_max <= 1, comm, PETSC_ERR_USER_INPUT, "-load_dt_max %g must lie in (0, 1]", (double)st->dt_max);
     PetscCheck(st->dt_min > 0 && st->dt_min <= st->dt0, comm, PETSC_ERR_USER_INPUT, "-load_dt_min %g must lie in (0, first increment %g]", (double)st->dt_min, (double)st->dt0);
@@ -191,21 +192,27 @@ static PetscErrorCode StepperFormJacobian(SNES snes, Vec U, Mat J, Mat P, void *
 }
 
 /* the start of stage k at the committed time t: its tools and conditions. A tool removed while it
-   presses on the body is removed all the same (its force is released in the stage's first
-   step), with a warning naming the force it carried. */
+   presses on the body (a force above the solution's accuracy) is removed all the same
+   (its force is released in the stage's first step), with a warning naming the force it carried. */
 static PetscErrorCode EnterStage(Stepper *st, PetscInt k, PetscReal t, PetscBool announce, PetscBool restart)
 {
   const Stage *s = &st->stages.s[k];
+  PetscReal    F = 0;
 
   PetscFunctionBeginUser;
+  if (announce && st->contact) PetscCall(ProblemForceScale(st->pb, &F));
   for (PetscInt i = 0; i < ContactNumTools(st->contact); i++) {
     const Tool *tl = NULL;
     PetscCall(ContactGetTool(st->contact, i, &tl));
     if (announce && !s->tool_on[i] && !tl->absent) {
       ContactToolResult r;
       PetscCall(ContactGetToolResult(st->contact, i, t, &r));
-      if (r.active > 0)
-        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WARNING: stage %s removes tool %s while it carries a force of %.6e (fx %.6e, fy %.6e, fz %.6e; %" PetscInt_FMT " nodes pressed): released at once in the stage's first step (a stage in which the tool retracts releases it gradually)\n", s->name, tl->name, sqrt(r.f[0] * r.f[0] + r.f[1] * r.f[1] + r.f[2] * r.f[2]), r.f[0], r.f[1], r.f[2], r.active));
+      const PetscReal fmag = PetscSqrtReal(r.f[0] * r.f[0] + r.f[1] * r.f[1] + r.f[2] * r.f[2]);
+      /* a force within the last Newton solve's tolerance, or below -newton_floor_force_tol of
+         the internal forces' scale, is zero to the solution's accuracy (a release that ends on a
+         node still touching at round-off) */
+      if (r.active > 0 && fmag > PetscMax(st->newton_tol, st->floor_force_tol * F))
+        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WARNING: stage %s removes tool %s while it carries a force of %.6e (fx %.6e, fy %.6e, fz %.6e; %" PetscInt_FMT " nodes pressed): released at once in the stage's first step (a stage in which the tool retracts releases it gradually)\n", s->name, tl->name, (double)fmag, r.f[0], r.f[1], r.f[2], r.active));
     }
     /* a release by nodal forces removes the tool and keeps its nodes' forces as loads (a restart
        finds them in the checkpoint) */
@@ -706,6 +713,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
           if (!pb->ndomain_err) PetscCall(VecNorm(R, NORM_2, &rt));
         }
         if (!ok || !(rt < rc)) PetscCall(VecCopy(pb->Uc, pb->U));
+        PetscCall(PetscInfo(snes, "kink predictor: |R| %g at the committed state, %g at the tangent predictor: %s\n", (double)rc, (double)rt, ok && rt < rc ? "tangent" : "committed"));
         pb->ndomain_err = 0;
       } else if (pred == PREDICTOR_TANGENT || kink || (pred == PREDICTOR_AUTO && !extrapolate)) {
         PetscBool ok;
