@@ -87,7 +87,13 @@ static PetscErrorCode Run(PetscBool *stop)
 
   PetscFunctionBeginUser;
   *stop = PETSC_FALSE;
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-memory_phases", &memph, NULL));
+  {
+    PetscBool tb = PETSC_FALSE;
+    PetscOptionsBegin(comm, NULL, "Diagnostics", NULL);
+    PetscCall(PetscOptionsBool("-memory_phases", "Print the memory allocated and resident (summed over the ranks) after each phase: mesh, contact setup, problem setup, solve", NULL, memph, &memph, NULL));
+    PetscCall(PetscOptionsBool("-atrito_traceback", "PETSc's error traceback instead of the one-line error (read at start-up)", NULL, tb, &tb, NULL));
+    PetscOptionsEnd();
+  }
   PetscCall(PetscMemzero(&mesh, sizeof(mesh)));
   PetscCall(PetscLogStageRegister("Mesh", &stage_mesh));
   PetscCall(PetscLogStageRegister("Setup", &stage_setup));

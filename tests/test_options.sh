@@ -4,7 +4,7 @@
 # closest known option, nothing is written into the options database behind the user's back, and
 # the result files say what they mean (history.csv reactions on constrained components only,
 # contact.csv displacement, path length and force vectors; an unwritable history fails on every
-# rank).
+# rank); the generated options reference equals what the code registers.
 cd "$(dirname "$0")/.." && . tests/lib.sh
 OUT=$(test_out options)
 
@@ -72,3 +72,15 @@ alone 2 "$OUT/nohist" -options_file cases/tension_bar.opts -load_steps 2; arc=$?
 [ $rc -ne 0 ] && [ $rc -ne 124 ] && [ $arc -ne 124 ] && [ "$(grep -c 'atrito: error' "$OUT/nohist.log")" -eq 1 ] && grep -q "cannot write '$OUT/nohist/history.csv' (-output_dir)" "$OUT/nohist.log" &&
   ok "an unwritable history.csv on 2 ranks: one error line, every rank exits ($rc), by itself (no rank waits when mpiexec does not end the job)" ||
   { not_ok "unwritable history.csv: exit $rc, without mpiexec's kill $arc (124: a rank left waiting)"; tail -n 4 "$OUT/nohist.log" | indent; }
+
+# 7. the options reference (doc/reference/options.md, scripts/options_reference.py) is what the
+#    code registers, every option with a description; a page that differs (an option renamed in
+#    the code, or a line edited by hand) fails the check
+out=$($PY scripts/options_reference.py --check 2>&1); rc=$?
+[ $rc -eq 0 ] && ok "doc/reference/options.md equals what -help lists ($out), every option described" ||
+  { not_ok "doc/reference/options.md differs from the code's options or an option has no description (exit $rc)"; echo "$out" | head -n 12 | indent; }
+sed 's/^- `-load_steps` (default `10`)/- `-load_steps` (default `12`)/' doc/reference/options.md >"$OUT/options_tampered.md"
+out=$($PY scripts/options_reference.py --check --file "$OUT/options_tampered.md" 2>&1); rc=$?
+[ $rc -ne 0 ] && grep -q -- '-load_steps' <<<"$out" &&
+  ok "a reference whose -load_steps default differs from the code's fails the check, naming the line" ||
+  { not_ok "a tampered reference passed the check (exit $rc)"; echo "$out" | head -n 5 | indent; }
