@@ -158,8 +158,9 @@ typedef struct {
 PetscErrorCode ContactStatusChanges(Contact c, ContactToolStatus *ts);
 /* nodes that entered or left contact in the last Newton iteration with a significant normal
    force (before or after: above 1e-3 of the largest normal force of the committed state and the
-   last two iterates); count over all ranks and the smallest node id */
-PetscErrorCode ContactChatter(Contact c, PetscInt *count, PetscInt *node);
+   last two iterates, and above fmin, the Newton solve's tolerance); count over all ranks and the
+   smallest node id */
+PetscErrorCode ContactChatter(Contact c, PetscReal fmin, PetscInt *count, PetscInt *node);
 /* keep 1 (nodes on frictionless tools), 2 (and on the frictional tools that the step moves by a
    prescribed displacement) or 3 (and on the frictional tools at rest in the step; never a
    force-driven tool's): every such node pressed in the committed state (in contact with a normal

@@ -1813,7 +1813,7 @@ PetscErrorCode ContactAugmentTolerances(Contact contact, PetscReal *tol, PetscRe
 /* Chattering: nodes whose contact status changed in the last Newton iteration although they carry
    a significant normal force, before (a node leaving) or after (a node entering): more than 1e-3
    of the largest normal force. Returns the count over all ranks and the smallest such node id. */
-PetscErrorCode ContactChatter(Contact contact, PetscInt *count, PetscInt *node)
+PetscErrorCode ContactChatter(Contact contact, PetscReal fmin, PetscInt *count, PetscInt *node)
 {
   PetscReal tmax = 0;
   PetscInt  c = 0, id = PETSC_MAX_INT;
@@ -1822,12 +1822,13 @@ PetscErrorCode ContactChatter(Contact contact, PetscInt *count, PetscInt *node)
   /* significant: above 1e-3 of the largest normal force of the step, committed or at the last two
      iterates (the committed forces too: where a release brings every force to zero, a node flipping
      with a force of round-off is no chattering, and 1e-3 of the vanishing forces alone made the
-     check depend on the round-off of the run) */
+     check depend on the round-off of the run), and above fmin (the Newton solve's tolerance: a
+     node whose force is within it changes the residual by no more than the solve accepts) */
   for (PetscInt i = 0; i < contact->ns; i++) tmax = PetscMax(tmax, PetscMax(contact->cst_c[i].tN, PetscMax(contact->cst_t[i].tN, contact->tN_prev[i])));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tmax, 1, MPIU_REAL, MPIU_MAX, contact->comm));
   for (PetscInt i = 0; i < contact->ns; i++) {
     const PetscBool active = contact->cst_t[i].status != CONTACT_OPEN;
-    if (active != contact->active_prev[i] && PetscMax(contact->cst_t[i].tN, contact->tN_prev[i]) > 1e-3 * tmax) {
+    if (active != contact->active_prev[i] && PetscMax(contact->cst_t[i].tN, contact->tN_prev[i]) > PetscMax(1e-3 * tmax, fmin)) {
       c++;
       id = PetscMin(id, contact->mesh->node_id[contact->slave[i]]);
     }

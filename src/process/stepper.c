@@ -91,7 +91,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   PetscCall(PetscOptionsReal("-newton_step_depth", "Energy line search: the Newton step is shortened so that no slave node goes deeper into its tool than this many element sizes normal to the contact face (0: no limit)", NULL, st->step_depth, &st->step_depth, NULL));
   PetscCheck(st->step_depth >= 0, comm, PETSC_ERR_USER_INPUT, "-newton_step_depth %g must be >= 0", (double)st->step_depth);
   PetscCall(PetscOptionsBool("-newton_monitor_contact", "One line per Newton iteration: |R| against the internal forces' scale, and per tool the nodes that entered and left contact in the iteration (with the largest normal force among them), the nodes pressed, the largest penetration", NULL, st->monitor, &st->monitor, NULL));
-  PetscCall(PetscOptionsBool("-contact_chatter_check", "Fail (and cut) a step whose last Newton iteration still changed the set of nodes in contact", NULL, st->chatter_check, &st->chatter_check, NULL));
+  PetscCall(PetscOptionsBool("-contact_chatter_check", "Fail (and cut) a step whose last Newton iteration still moved a node into or out of contact with a normal force above 1e-3 of the largest and above the Newton tolerance", NULL, st->chatter_check, &st->chatter_check, NULL));
   PetscCall(PetscOptionsBool("-load_kinks", "Land a step on every kink of every curve of the process time (tool paths and amplitudes, condition amplitudes) and never extrapolate across one (default: with stages or an amplitude curve)", NULL, st->kinks, &st->kinks, &st->kinks_set));
   {
     const char     *kp[] = {"none", "tangent", "auto", "KinkPredictor", "KINK_", NULL};
@@ -849,7 +849,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
           /* the active set must have settled: a node entering or leaving contact with a
              significant force in the last iteration means the step is not converged */
           PetscInt nch, nodeid;
-          PetscCall(ContactChatter(pb->contact, &nch, &nodeid));
+          PetscCall(ContactChatter(pb->contact, st->newton_tol, &nch, &nodeid));
           if (nch) {
             reason         = SNES_DIVERGED_INNER; /* reported below as chattering */
             pb->bad_status = -nch;
