@@ -1812,7 +1812,8 @@ PetscErrorCode ContactAugmentTolerances(Contact contact, PetscReal *tol, PetscRe
 
 /* Chattering: nodes whose contact status changed in the last Newton iteration although they carry
    a significant normal force, before (a node leaving) or after (a node entering): more than 1e-3
-   of the largest normal force. Returns the count over all ranks and the smallest such node id. */
+   of the largest normal force and more than fmin. Returns the count over all ranks and the
+   smallest such node id. */
 PetscErrorCode ContactChatter(Contact contact, PetscReal fmin, PetscInt *count, PetscInt *node)
 {
   PetscReal tmax = 0;
