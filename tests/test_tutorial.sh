@@ -3,9 +3,9 @@
 # from the docs alone, run on the code's defaults. Checks: the options file sets no contact option
 # but the sets and the friction, and no stage increment bound; the whole process (close, draw,
 # release, springback) runs at 1 and 2 ranks, whose histories agree to 1e-7 (the first draw step
-# starts from the tangent predictor, whose linear system at the closed state is ill-conditioned:
-# three direct solvers give corrections 2 % apart, so its Newton iterations may differ by two and
-# its state by the Newton tolerance, 3.8e-8 measured; mean_penetration is written with 7 digits,
+# starts from the tangent predictor, whose correction differs by 2 % between the rank counts and
+# between direct solvers, each solve accurate to 1.6e-13 (doc/notes/contact-defaults.md), so its
+# Newton iterations may differ by two and its state by the Newton tolerance, 3.8e-8 measured; mean_penetration is written with 7 digits,
 # its last one rounding either way); the post-processing of the
 # tutorial (scripts/cylcup_post.py) on its output: ears at 0 and 90 degrees (the rim draws in more
 # at 45: Hill's r-values with r0 + r90 > 2 r45), the largest thinning at the punch's profile
