@@ -147,9 +147,12 @@ def parse(text, probe):
     return groups
 
 
+PC_OWN = ["amgsys"]  # the preconditioners the code registers (src/solver/amg.c), checked against -help
+
+
 def collect():
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    merged, order = {}, []
+    merged, order, pcs = {}, [], set()
     with tempfile.TemporaryDirectory() as tmp:
         for probe in PROBES:
             r = subprocess.run([BIN, "-help"] + probe, cwd=ROOT, env=env,
@@ -157,6 +160,9 @@ def collect():
             if r.returncode != 0 or "atrito: error" in r.stdout + r.stderr:
                 err = [l for l in (r.stdout + r.stderr).splitlines() if "atrito: error" in l][:1]
                 sys.exit(f"options_reference: -help failed on the probe {' '.join(probe)}: {err}")
+            m = re.search(r"^  -pc_type <[^>]*>: Preconditioner \(one of\) (.*) \(PCSetType\)$", r.stdout, re.M)
+            if m:
+                pcs |= set(m.group(1).split())
             for title, opts in parse(r.stdout, probe):
                 if title not in merged:
                     merged[title] = []
@@ -169,6 +175,9 @@ def collect():
                     if (o[0], o[1]) not in have:
                         merged[title].append(o)
                         have.add((o[0], o[1]))
+    missing = [p for p in PC_OWN if p not in pcs]
+    if missing:
+        sys.exit(f"options_reference: -pc_type does not list {' '.join(missing)} on any probe")
     return [(t, merged[t]) for t in order]
 
 
@@ -189,7 +198,7 @@ def render(groups):
                 seen.add(name)
                 choices.append((name, m.group(1).split()))
     out += ["## Registered types and choices", "", "| option | values |", "|---|---|",
-            "| `-pc_type` (the code's own) | amgsys |"]
+            f"| `-pc_type` (the code's own) | {', '.join(PC_OWN)} |"]
     for name, ts in choices:
         out.append(f"| `{name}` | {', '.join(ts)} |")
     out.append("")

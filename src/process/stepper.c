@@ -71,7 +71,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
     PetscCall(PetscOptionsReal("-load_predictor_curvature", "Extrapolation predictor: the share beta of the quadratic term through the last three converged states added to the linear extrapolation (0: linear, 1: quadratic; default 0.5: doc/notes/contact-defaults.md)", NULL, st->curvature, &st->curvature, NULL));
     PetscCheck(st->curvature >= 0 && st->curvature <= 1, comm, PETSC_ERR_USER_INPUT, "-load_predictor_curvature %g must lie in [0, 1]", (double)st->curvature);
     PetscCheck(st->dt_max > 0 && st->dt_max <= 1, comm, PETSC_ERR_USER_INPUT, "-load_dt_max %g must lie in (0, 1]", (double)st->dt_max);
-    PetscCheck(st->dt_min > 0 && st->dt_min <= st->dt0, comm, PETSC_ERR_USER_INPUT, "-load_dt_min %g must lie in (0, first increment %g]", (double)st->dt_min, (double)st->dt0);
+    PetscCheck(st->dt_min > 0 && st->dt_min <= PetscMin(st->dt0, st->dt_max), comm, PETSC_ERR_USER_INPUT, "-load_dt_min %g must lie in (0, first increment %g] (1/-load_steps within -load_dt_max)", (double)st->dt_min, (double)PetscMin(st->dt0, st->dt_max));
     PetscCheck(st->cut > 0 && st->cut < 1, comm, PETSC_ERR_USER_INPUT, "-load_cut_factor %g must lie in (0, 1)", (double)st->cut);
     PetscCheck(st->grow >= 1 && PetscIsNormalReal(st->grow), comm, PETSC_ERR_USER_INPUT, "-load_grow_factor %g must be >= 1", (double)st->grow);
     PetscCheck(st->shrink_its >= 0, comm, PETSC_ERR_USER_INPUT, "-load_shrink_its %" PetscInt_FMT " must be >= 0", st->shrink_its);
