@@ -2,7 +2,8 @@
 #   make          build bin/atrito and the unit-test programs (on all cores unless -j is given)
 #   make run      install what is missing, build, run the main job
 #   make check    install what is missing, build, run the test suite
-#   make bench    assembly throughput benchmark (writes doc/performance.md)
+#   make bench    assembly throughput benchmark (writes doc/notes/performance-log.md)
+#   make doc      the guide as HTML in build/doc (scripts/make_doc.py), its links and figures checked
 #   make memcheck the unit tests and short runs under valgrind (scripts/memcheck.sh; make check runs its quick part)
 
 # Nothing here may ask an installed package at parse time: on a fresh machine the Makefile is read
@@ -36,7 +37,7 @@ DEPS_STAMP := build/.deps-ok
 FC       := gfortran
 UMAT_SO  := $(patsubst tests/umat_%.f,bin/umat_%.so,$(wildcard tests/umat_*.f)) $(if $(wildcard tests/test_umat.c),bin/umat_ctest.so)
 
-.PHONY: all deps run check bench clean sanitize memcheck
+.PHONY: all deps run check bench doc clean sanitize memcheck
 all: bin/atrito $(TEST_BIN) $(UMAT_SO)
 
 $(DEPS_STAMP):
@@ -101,6 +102,10 @@ run: deps all
 
 check: deps all
 	@PYTHON=$(PYTHON) bash tests/run_tests.sh
+
+# the options reference's check asks bin/atrito -help
+doc: deps bin/atrito
+	@$(PYTHON) scripts/make_doc.py
 
 bench: deps all
 	@$(PYTHON) scripts/bench_assembly.py

@@ -2,7 +2,7 @@
    integrated by return mapping (eqs 14-18 of the method), its consistent tangent (eq 23), nodal
    forces (eq 25) and the local tangent frame recurrence (eqs 28-30).
 
-   Conventions (doc/contact.md):
+   Conventions (doc/notes/contact-log.md):
    * n is the unit normal of the tool surface at the closest point, pointing out of the tool;
      g = (y - x).n is the gap, negative when the node has penetrated the tool.
    * t_N = K_N max(0, -g) >= 0 (compression positive); with an augmented-Lagrangian multiplier

@@ -24,7 +24,7 @@
    and the full Newton step from there raises |R| 10 to 130 times (measured) on its way into the
    quadratic basin (one element switching between plastic and elastic). The backtracking search
    crept at lambda = 0.01 to 0.1 for 16 to 25 iterations a step instead (the U-channel's release,
-   doc/forming.md). The watchdog takes such a step and costs one iteration where the step leads
+   doc/notes/forming-log.md). The watchdog takes such a step and costs one iteration where the step leads
    nowhere. Why not everywhere: with contact it was measured worse (a full step that raises |R|
    there mostly changes the active set; the U-channel's draw: 1 800 more iterations, most relaxed
    steps reverted); and where the equilibrium is not unique its long steps can land on another

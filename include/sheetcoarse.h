@@ -1,5 +1,5 @@
 /* A coarse space of plate-like modes for thin sheets, used by -pc_type amgsys beside its V-cycle
-   (src/solver/sheetcoarse.c; doc/performance.md, "One million hexahedra"). */
+   (src/solver/sheetcoarse.c; doc/notes/performance-log.md, "One million hexahedra"). */
 #ifndef ATRITO_SHEETCOARSE_H
 #define ATRITO_SHEETCOARSE_H
 #include <petscmat.h>

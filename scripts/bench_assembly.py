@@ -3,7 +3,7 @@
 Jacobian, with finite-strain J2 plasticity (Swift hardening) active, on the real code path.
 
   /usr/bin/python3 scripts/bench_assembly.py [--quick] [--no-build] [--reps N] [--baseline REV]
-                                              [--output doc/performance.md]
+                                              [--output doc/notes/performance-log.md]
 
 What it does
   1. Builds bin/atrito and build/lib.a with `make` when they are missing or out of date
@@ -25,8 +25,9 @@ What it does
      there), and measures it against the current code, alternating the two run by run: the
      kernel driver (each compiled against its own build/lib.a and headers) and the full assembly
      on the smallest mesh in both variants; the section then has a "Before and after" table.
-  5. Writes the section "## Assembly throughput" of doc/performance.md, keeping any other
-     "## " sections of that file as they are.
+  5. Writes the section "## Assembly throughput" of doc/notes/performance-log.md (the
+     measurements that doc/performance.md quotes), keeping any other "## " sections of that file
+     as they are.
 
 Only the Python standard library is used. Runs with OPENBLAS_NUM_THREADS=1 and the Open MPI
 run-as-root variables set.
@@ -838,7 +839,7 @@ def build_report(mi, build_state, results, par, kern, pfrac, notes, t_total, loa
 # ---------------------------------------------------------------------------------- main
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "notes", "performance-log.md"))
     ap.add_argument("--no-build", action="store_true", help="do not run make; use the binaries as found")
     ap.add_argument("--quick", action="store_true", help="smoke test: smallest mesh, one run each (for checking the script)")
     ap.add_argument("--from-json", metavar="FILE", help="only rewrite the report from the raw results of an earlier run")

@@ -9,7 +9,8 @@ step-local growth and exact solves (-contact_augmented_growth 4 -contact_augment
 -contact_augmented_soften; frictionless also the automatic penalty (-contact_penalty_normal auto) for three factors. Reports per run the punch force
 at 40 mm, the total Newton iterations (all the solves of the augmentation included), steps, cuts,
 the largest penetration of any step and the Newton solves per step; writes the section
-"## Augmented Lagrangian and penalty: measurements" of doc/contact.md.
+"## Augmented Lagrangian and penalty: measurements" of doc/notes/contact-log.md (the measurements
+behind doc/contact.md, which quotes them in its section Accuracy).
 
 usage: scripts/bench_auglag.py [--no-doc]"""
 import csv
@@ -153,7 +154,7 @@ def main():
     body = "\n".join(lines) + "\n"
     print(body)
     if "--no-doc" not in sys.argv:
-        benchutil.write_doc_section(os.path.join(ROOT, "doc", "contact.md"), "## Augmented Lagrangian and penalty: measurements", body)
+        benchutil.write_doc_section(os.path.join(ROOT, "doc", "notes", "contact-log.md"), "## Augmented Lagrangian and penalty: measurements", body)
 
 
 if __name__ == "__main__":

@@ -3,7 +3,8 @@
 iterations, the time per Newton iteration and its split, the punch force, for solver variants.
 
   /usr/bin/python3 scripts/bench_friction200k.py [--variant TAG:OPTIONS ...] [--ranks 2]
-        [--cells NC,NR] [--probe 5] [--logdir DIR] [--reuse] [--output doc/performance.md]
+        [--cells NC,NR] [--probe 5] [--logdir DIR] [--reuse]
+        [--output doc/notes/performance-log.md]
 
 What it does
   1. Before each variant, times the seed case without friction (cases/hemisphere_frictionless.opts
@@ -211,7 +212,7 @@ def main():
     ap.add_argument("--probe", type=int, default=5, help="seed-case runs before each variant (0: none)")
     ap.add_argument("--logdir", default=None)
     ap.add_argument("--reuse", action="store_true")
-    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "notes", "performance-log.md"))
     args = ap.parse_args()
     variants = args.variant or ["l1:-load_grow_its 6 -pc_amgsys_relax_type 18", "file:-load_grow_its 6"]
     parsed = []

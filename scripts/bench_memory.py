@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Memory: peak resident size per 100 000 hexahedra with the direct and the iterative solver.
 
-  /usr/bin/python3 scripts/bench_memory.py [--quick] [--two-ranks] [--output doc/performance.md]
+  /usr/bin/python3 scripts/bench_memory.py [--quick] [--two-ranks]
+                                           [--output doc/notes/performance-log.md]
 
 What it does
   1. Runs the friction benchmark (cases/hemisphere_friction.opts, Coons tools) on 4-layer blanks
@@ -72,7 +73,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="the two smaller meshes only")
     ap.add_argument("--two-ranks", action="store_true", help="the largest mesh on 2 ranks too")
-    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "notes", "performance-log.md"))
     a = ap.parse_args()
     meshes = MESHES[:2] if a.quick else MESHES
     plan = [(m, s, 1) for m in meshes for s in SOLVERS] + ([(meshes[-1], s, 2) for s in SOLVERS] if a.two_ranks else [])

@@ -2,7 +2,8 @@
 """One million hexahedra: memory, Krylov iterations and time per Newton iteration of large sheets.
 
   /usr/bin/python3 scripts/bench_million.py [--point NC,NR,STEPS,TRAVEL,RANKS[,m] ...] [--timeout S]
-                                            [--logdir DIR] [--reuse] [--output doc/performance.md]
+                                            [--logdir DIR] [--reuse]
+                                            [--output doc/notes/performance-log.md]
                                             [--solver cases/solver_amgsys_sheet.opts]
 
 What it does
@@ -568,7 +569,7 @@ def main():
     ap.add_argument("--logdir", default=None, help="keep the logs here")
     ap.add_argument("--reuse", action="store_true", help="read the logs in --logdir instead of running")
     ap.add_argument("--extra", default="", help="more options for every run (e.g. -snes_monitor -ksp_converged_reason to follow a long run)")
-    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "notes", "performance-log.md"))
     ap.add_argument("--solver", default=SOLVER, help=f"the solver's options file (default {SOLVER}); the section's text describes the default")
     a = ap.parse_args()
     globals()["SOLVER"] = a.solver

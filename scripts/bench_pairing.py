@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Pairing cost against the number of slave nodes: is the time per node flat from 10^3 to 10^5?
 
-  /usr/bin/python3 scripts/bench_pairing.py [--reps N] [--output doc/performance.md]
+  /usr/bin/python3 scripts/bench_pairing.py [--reps N] [--output doc/notes/performance-log.md]
 
 What it does
   1. Runs the friction benchmark with its Coons tools (cases/hemisphere_friction.opts: a punch of
@@ -67,7 +67,7 @@ def run(binary, k, outdir):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--reps", type=int, default=3, help="repetitions per mesh (default 3)")
-    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "notes", "performance-log.md"))
     a = ap.parse_args()
     if a.reps < 1:
         sys.exit("bench_pairing: --reps must be >= 1")

@@ -7,7 +7,8 @@ holder's unknowns, the sheet's coarse space), through its first K steps (close, 
 the draw). Reports per point: hexahedra, ranks, steps, Newton and Krylov iterations (per step, the
 most in one Newton iteration), seconds per Newton iteration, the peak resident memory summed over
 the ranks (PETSc's -memory_view) and per 100 000 hexahedra, the machine's load at the start.
-Writes the section "## A forming process at scale (measured)" of doc/performance.md.
+Writes the section "## A forming process at scale (measured)" of doc/notes/performance-log.md
+(the measurements that doc/performance.md quotes).
 
 usage: scripts/bench_process.py [--point N,L,K,RANKS ...] [--logdir DIR] [--reuse] [--output FILE]"""
 import argparse
@@ -99,7 +100,7 @@ def main():
     ap.add_argument("--logdir", default=os.path.join(ROOT, "build", "bench_process"))
     ap.add_argument("--reuse", action="store_true", help="read the logs in --logdir instead of running")
     ap.add_argument("--timeout", type=float, default=7200.0)
-    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "notes", "performance-log.md"))
     a = ap.parse_args()
     pts = [tuple(int(x) for x in s.split(",")) for s in (a.point or ["40,2,6,1", "158,4,6,2"])]
     os.makedirs(a.logdir, exist_ok=True)

@@ -2,7 +2,8 @@
 """Run times of the hemispherical punch benchmark against the speed targets.
 
   /usr/bin/python3 scripts/bench_runs.py [--reps N] [--xfine] [--efficiency] [--eff-reps N]
-                                         [--eff-orderings nd,mumps] [--output doc/performance.md]
+                                         [--eff-orderings nd,mumps]
+                                         [--output doc/notes/performance-log.md]
 
 What it does
   1. Runs the two main seed-mesh cases (cases/hemisphere_frictionless.opts and
@@ -89,7 +90,7 @@ def main():
     ap.add_argument("--eff-reps", type=int, default=3, help="repetitions of the efficiency runs (default 3)")
     ap.add_argument("--eff-orderings", default="nd", help="LU orderings of the efficiency runs, comma-separated: nd, mumps "
                     "(default nd; the first one also gets the machine-limit pairs)")
-    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "notes", "performance-log.md"))
     a = ap.parse_args()
     if a.reps < 1 or a.eff_reps < 1:
         sys.exit("bench_runs: --reps and --eff-reps must be >= 1")

@@ -1,6 +1,6 @@
 /* Projection cost on a meshed tool surface (scripts/bench_tool_facets.py builds and runs this):
    bench_tool_facets -tool_names s -tool_s_file sphere.stl [-tool_s_smooth 0] -bench_queries N
-   or, for the hinted node passes alone (medians of interleaved runs, doc/tools.md "Cost"):
+   or, for the hinted node passes alone (medians of interleaved runs, doc/notes/tools-log.md "Cost"):
    bench_tool_facets -tool_names s -tool_s_file sphere.stl [-tool_s_smooth 0] -bench_node_passes BAND[,BAND...] [-bench_reps 5] [-bench_cputime]
    or, for the tool's storage per array (bytes per facet):
    bench_tool_facets -tool_names s -tool_s_file sphere.stl -bench_bytes

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Projection cost on meshed tool surfaces from 1e2 to 1e6 facets (doc/performance.md, section
-"Meshed tool surfaces").
+"""Projection cost on meshed tool surfaces from 1e2 to 1e6 facets (doc/notes/performance-log.md,
+section "Meshed tool surfaces"; quoted in doc/performance.md).
 
 A unit sphere triangulated from an octahedron (8 k^2 triangles, k = 4 ... 354) is written as a
 binary STL; scripts/bench_tool_facets.c (compiled here against build/lib.a: run `make` first) reads
@@ -9,7 +9,8 @@ surface, raw facets and smoothed (Nagata), one core: the queries in random order
 along a Morton curve (spatially coherent, as the nodes of a mesh come).
 
   /usr/bin/python3 scripts/bench_tool_facets.py [--ks 4,11,35,112,354] [--queries 200000]
-                                                [--repeat 1] [--output doc/performance.md] [--cputime]
+                                                [--repeat 1] [--cputime]
+                                                [--output doc/notes/performance-log.md]
 Prints the table and writes the section "## Meshed tool surfaces" of the output file, keeping its
 other sections (--output '' : print only).
 """
@@ -66,7 +67,7 @@ NOTE = ("The warm start (src/tool/facets.c, `FacetsClosestHint`): the hint's fac
         "the cache lines a node touches (its facets, their vertices and neighbours, its star) are no longer cached from the previous pass "
         "(with 2000 nodes the hinted raw pass cost about the same at 1e6 facets as at 128). At ±5 % R most nodes of the finer spheres are "
         "many cells away, beyond their facet's clearance, and take the hierarchy, whose cost grows with the tool."
-        " On a machine shared with other work (busy cores near the machine's count) the rows are measured at different loads and, by the wall time, their ratios are not reliable (`--cputime`: the thread's processor time): doc/tools.md, *Cost*, gives medians of interleaved runs of the code before and after the star certificate and before and after the smaller tool.")
+        " On a machine shared with other work (busy cores near the machine's count) the rows are measured at different loads and, by the wall time, their ratios are not reliable (`--cputime`: the thread's processor time): doc/notes/tools-log.md, *Cost*, gives medians of interleaved runs of the code before and after the star certificate and before and after the smaller tool.")
 
 
 def main():
@@ -74,7 +75,7 @@ def main():
     ap.add_argument("--ks", default="4,11,35,112,354")
     ap.add_argument("--queries", type=int, default=200000)
     ap.add_argument("--repeat", type=int, default=1, help="runs per row; the table gives each column's median")
-    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--output", default=os.path.join(ROOT, "doc", "notes", "performance-log.md"))
     ap.add_argument("--cputime", action="store_true", help="time by the thread's processor time (bench_tool_facets -bench_cputime): on a machine shared with other work, the wall time counts the waits for a core")
     a = ap.parse_args()
     exe = os.path.join(ROOT, "build", "bench_tool_facets")

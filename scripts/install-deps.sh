@@ -30,6 +30,8 @@ have valgrind || need+=(valgrind)
 "$PY" -c "import numpy" >/dev/null 2>&1 || need+=(python3-numpy)
 "$PY" -c "import h5py" >/dev/null 2>&1 || need+=(python3-h5py)
 "$PY" -c "import matplotlib" >/dev/null 2>&1 || need+=(python3-matplotlib)
+# the guide's HTML (`make doc`, scripts/make_doc.py)
+"$PY" -c "import markdown" >/dev/null 2>&1 || need+=(python3-markdown)
 [ ${#need[@]} -eq 0 ] && exit 0
 
 echo "install-deps: installing ${need[*]}"

@@ -42,7 +42,7 @@ ALU = dict(E=70000.0, nu=0.3, K=576.79, eps0=0.01658, n=0.3593, r0=0.71, r45=0.5
 CUP_AL = dict(CUP, t=0.81, mu=0.162)
 # the cup's variants: tag (file names numisheet93_<tag>_*), geometry and process, material, its name
 CUPS = {"cup": (CUP, MILD, "mild steel"), "cup_al": (CUP_AL, ALU, "aluminium")}
-# Contact of the fixed-gap variants (*_gap.opts, the runs of doc/forming.md's "Status" before the
+# Contact of the fixed-gap variants (*_gap.opts, the runs of doc/notes/forming-log.md's "Status" before the
 # process cases): penalties per unit area and the augmented Lagrangian holding the penetration below 0.01 mm
 # (1.3 % of the thickness), its multipliers to 20 % (with 1 %, the default, the U-channel's updates
 # stall near 8 mm of stroke). The U-channel needs a soft penalty, 100 N/mm^3: with the strip's tiny
@@ -50,7 +50,7 @@ CUPS = {"cup": (CUP, MILD, "mild steel"), "cup_al": (CUP_AL, ALU, "aluminium")}
 # from one Newton iteration to the next; the cup runs with 1000 N/mm^3. The search distance covers
 # the whole tools: with the default (5 % of the largest tool box) a node over the die's cavity that is
 # too far from its shoulder and walls is paired with the edge of the die's face, whose plane then
-# acts as if it extended over the cavity. doc/forming.md. The process cases give none of these: the
+# acts as if it extended over the cavity. doc/notes/forming-log.md. The process cases give none of these: the
 # contact sets and the friction only, on the code's defaults (doc/contact.md, Contact without tuning).
 def contact(kn):
     return ["-contact_penalty_per_area", "-contact_penalty_normal %g" % kn, "-contact_penalty_tangential %g" % (kn / 10),
@@ -204,7 +204,7 @@ def cup_tools(tag="cup"):
     # the corner blend: the profile arc swept about the corner's axis, a torus of major radius rf <
     # minor rp (a spindle torus) on the tube angles -90..0, where the distance from the axis
     # rf + rp cos(ps) stays >= rf. (Until 2026-11-25 a Coons patch of its four boundary arcs, whose
-    # interior lies up to 0.40 mm inside the torus near the diagonal: doc/forming.md, Status.)
+    # interior lies up to 0.40 mm inside the torus near the diagonal: doc/notes/forming-log.md, Status.)
     p.torus([c, c, t + rp], [0, 0, 1], [1, 0, 0], rf, rp, [0, 90, -90, 0])
     p.plane([a, S, t + rp], [0, 1, 0], [0, 0, 1], [0, c - S, 0, H])                      # +x
     p.plane([S, a, t + rp], [0, 0, 1], [1, 0, 0], [0, H, 0, c - S])                      # +y
@@ -310,7 +310,7 @@ def uchannel_cases(level, h, gap=True):
                    # their forces fall (the die 42 mm down and 10 mm out, along x across the
                    # symmetry plane), and their contact bends the wall and the flange plastically
                    # in the release; the springback then depends on that path
-                   # (doc/forming.md, "The U-channel's release")
+                   # (doc/notes/forming-log.md, "The U-channel's release")
                    "-stage_release_release_mode nodes",
                    "-stage_release_bcs symx,sides,pin",
                    "-stage_springback_duration 0.5", "-stage_springback_steps 5",

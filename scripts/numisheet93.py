@@ -449,7 +449,7 @@ def holder_range(r, spec):
 
 def write_doc(U, C, variant, max_steps):
     L = [BEGIN, "",
-         "Written by `scripts/numisheet93.py` (variant `%s`%s) on %s." %
+         "Measured by `scripts/numisheet93.py` (variant `%s`%s) on %s." %
          (variant, ", at most %d steps per run" % max_steps if max_steps else "", time.strftime("%Y-%m-%d")), ""]
     L += ["| case | hexahedra | steps | Newton iterations | cuts | wall time (s) | s per step | reached (process time) | status |",
           "|---|---|---|---|---|---|---|---|---|"]

@@ -16,7 +16,7 @@ usage: scripts/peer_calculix.py [--reps N] [--write-doc] [--keep DIR]
 3. Runs both --reps times (OMP_NUM_THREADS=1, one MPI rank), interleaved, and reports the
    punch force of the full sheet (4 x the quarter's) at 10, 20, 30, 40 mm, the wall times (medians)
    and their ratio, with the machine's load. --write-doc writes the section "Against CalculiX"
-   of doc/performance.md.
+   of doc/notes/performance-log.md.
 """
 import argparse, math, os, re, shutil, subprocess, sys, tempfile, time
 import numpy as np
@@ -254,7 +254,7 @@ def main():
         body += ["", f"Wall time to 40 mm: this code {ma:.2f} s (median of {len(t_at)}: C3D8-type F-bar hex8, analytic tools, 21 steps),",
                  f"CalculiX {mc:.2f} s (median of {len(t_cc)}, {len(u_cc) - 1} increments): CalculiX takes {mc / ma:.1f} times as long.",
                  f"Machine load (1-minute average) before the CalculiX runs: {', '.join(f'{l:.2f}' for l in loads)}."]
-        benchutil.write_doc_section(os.path.join(ROOT, "doc", "performance.md"), "## Against CalculiX", "\n".join(body) + "\n")
+        benchutil.write_doc_section(os.path.join(ROOT, "doc", "notes", "performance-log.md"), "## Against CalculiX", "\n".join(body) + "\n")
     return 0 if rc == 0 else 1
 
 

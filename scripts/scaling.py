@@ -1,11 +1,11 @@
 #!/usr/bin/python3
 """Strong and weak parallel scaling of atrito from PETSc's -log_view, and the section
-"## Parallel scaling" of doc/performance.md.
+"## Parallel scaling" of doc/notes/performance-log.md.
 
   /usr/bin/python3 scripts/scaling.py [--max-ranks N | --ranks 1,2,4] [--repeat 3]
       [--only strong|weak] [--strong-case FILE] [--strong-args "..."] [--weak-case FILE]
       [--weak-cells NX,NY,NZ] [--weak-args "..."] [--launcher "mpiexec ... -n {np}"]
-      [--doc doc/performance.md | --no-doc] [--out out/scaling] [--timeout S]
+      [--doc doc/notes/performance-log.md | --no-doc] [--out out/scaling] [--timeout S]
       [--quiet-wait 30] [--quiet-wait-total 150] [--report-only]
 
 Strong scaling: one fixed problem at 1, 2, 4, ... ranks up to --max-ranks (default: the number
@@ -538,7 +538,7 @@ def main():
     ap.add_argument("--weak-args", default=WEAK_ARGS, help="options added to the weak case (write --weak-args=\"-opt v\")")
     ap.add_argument("--launcher", default=DEFAULT_LAUNCHER, help="launch template, {np} = ranks")
     ap.add_argument("--bin", default=os.path.join(ROOT, "bin", "atrito"))
-    ap.add_argument("--doc", default=os.path.join(ROOT, "doc", "performance.md"))
+    ap.add_argument("--doc", default=os.path.join(ROOT, "doc", "notes", "performance-log.md"))
     ap.add_argument("--no-doc", action="store_true", help="print the section instead of writing it")
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "scaling"))
     ap.add_argument("--timeout", type=float, default=600, help="seconds per run")

@@ -9,7 +9,7 @@ usage: scripts/scaling_model.py [--core 210 --radial 490 --layers 4] [--no-measu
 1. Partition statistics (scripts/partition_stats.c, built here against build/lib.a): the mesh
    partitioned by METIS as the code does into 16 ... 4096 parts; per part owned cells, owned and
    ghost vertices, neighbours, contact slave nodes; the edge cut.
-2. Unit costs measured here on one core (--no-measure: the values of doc/performance.md): the
+2. Unit costs measured here on one core (--no-measure: the values of doc/notes/performance-log.md): the
    Jacobian and residual assembly per element and the contact evaluation per slave node from a
    run with -log_view, and the iterative solver of the million-hexahedra case
    (cases/solver_amgsys.opts: BiCGStab + BoomerAMG) per unknown and Krylov iteration ((KSPSolve -
@@ -43,7 +43,7 @@ AMG_LEVELS = 8                  # levels of BoomerAMG's hierarchy at a million h
 SWEEPS = 3                      # smoothing sweeps per level and direction (cases/solver_amgsys.opts)
 EXCH_PER_KRY = 2 * (1 + AMG_LEVELS * (2 * SWEEPS + 3))  # ghost exchanges per BiCGStab iteration
 ALLRED_PER_KRY = 4 + AMG_LEVELS                          # allreduces per BiCGStab iteration
-# measured on this machine (doc/performance.md, One million hexahedra): the whole blank at 2 ranks
+# measured on this machine (doc/notes/performance-log.md, One million hexahedra): the whole blank at 2 ranks
 MEASURED = [(250512, 942495, 2, 61.0, "5 Newton iterations of a 1 mm step, 304 s"),
             (1010224, 3794535, 2, 290.0, "9 Newton iterations and the predictor of a 1 mm step, 2 888 s")]
 
@@ -175,7 +175,8 @@ def measured_section(data, exe):
           f"Measured with `scripts/scaling.py` on {mi['date']}: {mi['cpu']}, {mi['cores']} cores ({mi.get('virt', '')}), {mi['mem']}, "
           f"one rank per core (`{data['launcher']}`); commit {mi['commit']}; rendered by `scripts/scaling_model.py --measured` from "
           f"`{os.path.relpath(MEASURED_JSON, ROOT)}` (the runs' counts and event times). Other load on the machine during the runs "
-          f"(scripts/scaling.py, from /proc/stat): at most {max(r['other_load'] for r in data['runs']):.2f} cores.", "",
+          f"(scripts/scaling.py, from /proc/stat): at most {max(r['other_load'] for r in data['runs']):.2f} cores"
+          + (f"; `{data['node']['script']}` on {data['node']['date']}." if data.get("node") else "."), "",
           "The model of this document applied to each measured case with that machine's own unit costs, taken from its 1-rank run "
           "of the same case (per Newton iteration: the assembly time, the contact time; per unknown: the Krylov iteration and "
           "BoomerAMG's setup), the counts measured at each rank count (Krylov iterations and setups per Newton iteration: the "
@@ -267,7 +268,7 @@ def measured_section(data, exe):
             runs = "; ".join(f"{n} at once: median {statistics.median(t):.2f} s ({statistics.median(t) / a1:.2f} times), "
                              f"{min(t):.2f} to {max(t):.2f}" for n, t in node["at_once"])
             why = (f"a core of this machine is slower with all its cores busy than alone, with no communication at all: the same "
-                   f"1-rank run (`{node['case']}`, `{node['script']}`, {node['date']}) took {a1:.2f} s alone; {runs}")
+                   f"1-rank run (`{node['case']}`, `{node['script']}`) took {a1:.2f} s alone; {runs}")
         else:
             why = "a core of this machine is slower with all its cores busy than alone"
         L += [f"- The assembly, compute-bound with one ghost exchange per call, takes {v0[-1][2]:.2f} and {v1[-1][2]:.2f} times the model's "
@@ -341,7 +342,7 @@ def main():
                  f"{int(r['slaves_max'])} ({r['slaves_mean']:.0f}) | {r['slaves_max'] / r['slaves_mean']:.3f} | {r['seconds']:.2f} |")
     L += ["", "## Unit costs (measured on one core of this machine)", ""]
     if a.no_measure:
-        L.append("Not measured in this run (--no-measure): the assembly costs of doc/performance.md; no Krylov cost, so no model below.")
+        L.append("Not measured in this run (--no-measure): the assembly costs of doc/notes/performance-log.md; no Krylov cost, so no model below.")
     else:
         L += [f"From `cases/hemisphere_friction_refined.opts` ({c['ncell']} hexahedra, {c['nslave']} slave nodes, 3 load steps, `-log_view`):",
               f"Jacobian assembly {1e6 * c['t_jac']:.2f} µs per element, residual {1e6 * c['t_res']:.2f} µs per element, contact "
@@ -368,7 +369,7 @@ def main():
         for r in m:
             L.append(f"| {r['P']} | {r['asm']:.4f} | {r['con']:.4f} | {r['kry']:.4f} | {r['comm']:.5f} | {r['T']:.4f} | {100 * r['eff']:.0f} % | {r['imb_c']:.3f} | {r['imb_s']:.3f} |")
         t1 = m[0]["T"]
-        L += ["", "Against the whole steps measured on this machine (2 ranks, doc/performance.md, One million hexahedra; the model at 2 ranks "
+        L += ["", "Against the whole steps measured on this machine (2 ranks, doc/notes/performance-log.md, One million hexahedra; the model at 2 ranks "
               "taken as its 1-rank time over 2 scaled to the case's unknowns, i.e. perfectly balanced, no communication):", "",
               "| hexahedra | unknowns | ranks | measured s per Newton iteration | model s | measured / model | measured run |", "|---|---|---|---|---|---|---|"]
         for cells, dofs, P, meas, what in MEASURED:

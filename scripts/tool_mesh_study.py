@@ -113,7 +113,7 @@ def main():
     if not ref["done"]:
         sys.exit("tool_mesh_study: the analytic run did not finish: " + ref["error"])
     lines = [BEGIN, "",
-             f"Written by `scripts/tool_mesh_study.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC (commit {subprocess.run(['git', 'rev-parse', '--short', 'HEAD'], cwd=ROOT, capture_output=True, text=True).stdout.strip() or '?'}); "
+             f"Measured by `scripts/tool_mesh_study.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC (commit {subprocess.run(['git', 'rev-parse', '--short', 'HEAD'], cwd=ROOT, capture_output=True, text=True).stdout.strip() or '?'}); "
              f"one rank unless said, two runs at a time on the 2-core machine (wall times indicative). Punch force (kN) at the travel, "
              f"its deviation from the analytic tools in brackets; h: the punch facets' meridian edge.", "",
              "| tools | h (mm) | 20 mm | 30 mm | 40 mm | steps | Newton its | cuts | wall (s) |", "|---|---|---|---|---|---|---|---|---|"]

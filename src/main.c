@@ -43,7 +43,7 @@ static PetscErrorCode OneLineErrorHandler(MPI_Comm comm, int line, const char *f
 }
 
 /* -memory_phases: the memory in use after a phase of the setup, summed over the ranks: PetscMalloc()ed
-   (counted with -log_view_memory or -malloc_debug, else 0) and the resident set size (doc/performance.md,
+   (counted with -log_view_memory or -malloc_debug, else 0) and the resident set size (doc/notes/performance-log.md,
    "Memory") */
 static PetscErrorCode MemoryPhase(MPI_Comm comm, PetscBool on, const char *phase, Mat J)
 {

@@ -72,6 +72,7 @@ run forcetool       bash tests/test_forcetool.sh
 run eas-solver      bash tests/test_eas.sh
 run scripts         bash tests/test_scripts.sh
 run options         bash tests/test_options.sh
+run doc             bash tests/test_doc.sh
 run bad-input       bash tests/test_bad_input.sh
 run umat-runs       bash tests/test_umat.sh
 run tutorial       bash tests/test_tutorial.sh

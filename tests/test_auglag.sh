@@ -32,7 +32,7 @@ done
 #    With the default the symmetric problem acquires a transverse reaction fy of about 1e-7 of the
 #    normal force from the step where the nodes turn from stick to slip (with frictionless: 1e-13),
 #    seeded by round-off and so not the same at 1 and 2 ranks to 8 digits of the 1e-3 floor; its
-#    level is checked (doc/contact.md, Augmented Lagrangian)
+#    level is checked (doc/notes/contact-log.md, Augmented Lagrangian)
 atrito 1 sph1 -options_file cases/block_sphere.opts -output_interval 0 $AUG -newton_keep_contact frictionless
 atrito 2 sph2 -options_file cases/block_sphere.opts -output_interval 0 $AUG -newton_keep_contact frictionless
 compare "$OUT/sph1/contact.csv" "$OUT/sph2/contact.csv" 8 "augmented block and sphere: contact history at np=1 and np=2"
@@ -40,7 +40,7 @@ atrito 1 sphd -options_file cases/block_sphere.opts -output_interval 0 $AUG
 #    the default at 2 ranks: every column but fy to 1e-8, the reactions on the scale of the file's
 #    forces; fy, zero by symmetry, is held to the symmetry bound at both rank counts: with `all`
 #    the paper's frame recurrence turns the frame by a rank-dependent round-off that the
-#    friction carries (doc/performance.md, "Why `all` broke the symmetry of block_sphere"): fy
+#    friction carries (doc/notes/performance-log.md, "Why `all` broke the symmetry of block_sphere"): fy
 #    6e-9 of fz apart at 1 and 2 ranks on one machine, 1e-7 on another
 atrito 2 sphd2 -options_file cases/block_sphere.opts -output_interval 0 $AUG
 $PY tests/compare_csv.py "$OUT/sphd/contact.csv" "$OUT/sphd2/contact.csv" --rtol 1e-8 --skip 'residual_*,fy' --int-tol newton_its=1 --label "augmented block and sphere, default keep (moving): contact history at np=1 and np=2 but fy, forces on the forces' scale"
@@ -112,7 +112,7 @@ PY
 # 2 ranks against 1 at the seed's K_N 1e5: at 1e3 about one 2-rank run in eight takes another
 # step sequence (a step's first solve stalls and is cut: MUMPS's parallel factorisation is not
 # bitwise reproducible, and the augmentation's decisions at its tolerances can flip with it), an
-# open robustness point of the soft penalty (doc/contact.md)
+# open robustness point of the soft penalty (doc/notes/contact-log.md)
 atrito 2 hstiff2 $HEM -contact_penalty_normal 1e5
 compare "$OUT/hstiff/contact.csv" "$OUT/hstiff2/contact.csv" 8 "augmented hemisphere, K_N 1e5: contact history at np=1 and np=2"
 # shellcheck disable=SC2086
@@ -153,8 +153,8 @@ else not_ok "augmented restart with softened penalties failed"; tail -n 5 "$OUT/
 #     is moving in an augmented run: the same history as with the option given, bit for bit, on the
 #     seed mesh with analytic tools, whose file gives no -newton_keep_contact); the punch force
 #     within 0.2 % of the augmented run at K_N 1e5, the Newton iterations at most 1.7 times the plain
-#     penalty run's at K_N 1e3 (doc/contact.md, measurements: the Coons seed case with the code's
-#     default stepping and keeps, given here since its file now sets its own, doc/performance.md;
+#     penalty run's at K_N 1e3 (doc/notes/contact-log.md, measurements: the Coons seed case with the code's
+#     default stepping and keeps, given here since its file now sets its own, doc/notes/performance-log.md;
 #     1.5 before the energy line search and the force tolerance, which took the plain run from 94
 #     to 82 iterations and the augmented one from 138 to 131)
 FRI="-options_file cases/hemisphere_friction.opts -output_interval 0 $DEFSTEP"

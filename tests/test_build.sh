@@ -98,7 +98,7 @@ upd=$(grep -n -m1 'apt-get .*update' "$d/calls" 2>/dev/null | cut -d: -f1)
 ins=$(grep -m1 'apt-get .*install' "$d/calls" 2>/dev/null)
 insn=$(grep -n -m1 'apt-get .*install' "$d/calls" 2>/dev/null | cut -d: -f1)
 miss=""
-for p in make gcc pkg-config python3 petsc-dev libmumps-dev libmetis-dev libhdf5-openmpi-dev openmpi-bin libopenmpi-dev; do
+for p in make gcc pkg-config python3 petsc-dev libmumps-dev libmetis-dev libhdf5-openmpi-dev openmpi-bin libopenmpi-dev python3-markdown; do
   [[ " $ins " == *" $p "* ]] || miss="$miss $p"
 done
 # (it ends with an error: the fake apt-get installs nothing, and the script checks the result)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration tests of tools from geometry files (doc/tools.md "Meshed surfaces"): a block pressed
+# Integration tests of tools from geometry files (doc/notes/tools-log.md "Meshed surfaces"): a block pressed
 # and dragged by a ball from a binary STL (16 rings, Nagata smoothing) against the analytic ball,
 # 1 and 2 ranks (the same histories to 1e-8); the hemispherical punch benchmark with its tools from tool files (.tool: the same
 # patches, the same history), from STL files (24 rings on the punch) and from an Abaqus deck.

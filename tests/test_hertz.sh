@@ -2,7 +2,7 @@
 # Hertz indentation (cases/hertz_indentation.opts): a rigid sphere R = 3 pressed d = 0.02 into an
 # elastic block (E = 1000, nu = 0.3, frictionless, quarter model) with the automatic penalty and
 # the augmented Lagrangian, on a geometrically graded box mesh (-box_grading), against
-# F = 4/3 E* sqrt(R) d^1.5. The study behind the bounds (doc/contact.md, "Indentation"): with the
+# F = 4/3 E* sqrt(R) d^1.5. The study behind the bounds (doc/notes/contact-log.md, "Indentation"): with the
 # near-field mesh fixed (first cell 0.0306, ratio 1.32 per cell) the force exceeds Hertz by
 # e(L) = e_inf + c/L, c = 19.5 % x length, L the block's side: +9.0, +5.2, +3.3, +2.2, +1.65 % at
 # L = 2.6, 4.6, 8, 14, 24.4, the half-space limit e_inf = +0.8 to +0.9 %; the mesh at L = 8 (12 to

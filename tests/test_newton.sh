@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Newton iterations of a load step (doc/performance.md, Newton iterations): the curvature
+# The Newton iterations of a load step (doc/notes/performance-log.md, Newton iterations): the curvature
 # correction of the extrapolation predictor (-load_predictor_curvature) on the frictionless seed
 # mesh with analytic tools and the code's default stepping to 40 mm (0.5 by default): the same
 # converged states as the linear extrapolation (-load_predictor_curvature 0; contact and reaction

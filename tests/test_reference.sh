@@ -39,12 +39,17 @@ i_force=$(head -1 "$R" | tr ',' '\n' | grep -nx force | cut -d: -f1)
 mutate same "pass"
 mutate scaled "body[20][$((i_force - 1))] = repr(float(body[20][$((i_force - 1))]) * (1 + 1e-8))"
 mutate tool "body[3][h.index('tool')] = 'die' if body[3][h.index('tool')] != 'die' else 'punch'"
-mutate stick "body[30][h.index('stick')] = str(int(body[30][h.index('stick')]) + 1)"
+mutate stick "k = h.index('stick'); r = body[len(body) // 2]; r[k] = str(int(r[k]) + 1)"
 mutate nocol "k = h.index('slip'); h.pop(k); [r.pop(k) for r in body]"
 mutate norow "body.pop()"
 mutate swapped "p = list(range(len(h))); p.reverse(); h[:] = [h[k] for k in p]; body[:] = [[r[k] for k in p] for r in body]"
 for m in same:0 swapped:0 scaled:1 tool:1 stick:1 nocol:1 norow:1; do
   name=${m%%:*}; want=${m#*:}
+  # a mutation that raised leaves no copy, and a copy equal to the reference changes nothing:
+  # either would pass the comparison's failure for the wrong reason
+  if [ ! -s "$OUT/$name.csv" ] || { [ "$name" != same ] && cmp -s "$R" "$OUT/$name.csv"; }; then
+    not_ok "compare_csv.py on a copy of $R, $name: the mutation made no changed copy"; continue
+  fi
   line=$($PY tests/compare_csv.py "$R" "$OUT/$name.csv" --rtol "$RTOL" --atol 0 --skip 'residual_*' --int-tol newton_its=1 --label x); rc=$?
   [ $((rc != 0)) -eq "$want" ] && ok "compare_csv.py on a copy of $R, $name: exit $rc (${line:0:150})" ||
     not_ok "compare_csv.py on a copy of $R, $name: exit $rc, expected $([ "$want" = 1 ] && echo a failure || echo success): $line"

@@ -2,7 +2,8 @@
 # The measurements of the benchmark scripts on synthetic data (no run of the code): the
 # NUMISHEET'93 sections (theta1, theta2, rho), the square cup's draw-in and its verdict; the
 # measured scaling section of doc/scaling-model.md from its stored runs; the 200 000-hexahedra
-# friction case's section of doc/performance.md from its runs' trimmed logs; a section rewritten
+# friction case's section of doc/notes/performance-log.md (the measurements behind
+# doc/performance.md) from its runs' trimmed logs; a section rewritten
 # by a benchmark keeps its hand-written subsections (benchutil.write_doc_section keep_written).
 set -u
 cd "$(dirname "$0")/.."
@@ -24,24 +25,26 @@ else
   not_ok "scripts/scaling_model.py --measured: the section differs from doc/scaling-model.md, or the render failed:"
   { tail -5 "$OUT/scaling_model.log"; diff doc/scaling-model.md "$OUT/scaling-model.md" | head -20; } | indent
 fi
-# the 200 000-hexahedra friction case (doc/performance.md, "The 200 000-hexahedra friction case"):
+# the 200 000-hexahedra friction case (doc/notes/performance-log.md, "The 200 000-hexahedra
+# friction case"):
 # rendered again from the trimmed logs of its runs (tests/data/bench200k: each run's header lines,
 # progress lines, summary, -log_view events of the Solve stage and last punch force), it must give
 # the committed section
 B200="--variant l1: --variant l1b: --variant l1c: --variant l1d: --variant file: --variant file_grow5:"
-cp doc/performance.md "$OUT/performance.md"
-if $PY scripts/bench_friction200k.py --reuse --logdir tests/data/bench200k $B200 --output "$OUT/performance.md" >"$OUT/bench200k.log" 2>&1 &&
-   cmp -s doc/performance.md "$OUT/performance.md"; then
+PLOG=doc/notes/performance-log.md
+cp $PLOG "$OUT/performance-log.md"
+if $PY scripts/bench_friction200k.py --reuse --logdir tests/data/bench200k $B200 --output "$OUT/performance-log.md" >"$OUT/bench200k.log" 2>&1 &&
+   cmp -s $PLOG "$OUT/performance-log.md"; then
   ok "scripts/bench_friction200k.py --reuse: the committed section again from tests/data/bench200k"
 else
-  not_ok "scripts/bench_friction200k.py --reuse: the section differs from doc/performance.md, or the render failed:"
-  { tail -5 "$OUT/bench200k.log"; diff doc/performance.md "$OUT/performance.md" | head -20; } | indent
+  not_ok "scripts/bench_friction200k.py --reuse: the section differs from $PLOG, or the render failed:"
+  { tail -5 "$OUT/bench200k.log"; diff $PLOG "$OUT/performance-log.md" | head -20; } | indent
 fi
 # a section rewritten by a benchmark keeps the subsections written by hand after its runs
 # (scripts/bench_million.py: the iteration bound, the sheet's coarse space): the committed
 # "One million hexahedra" written again from its own generated part must give the committed file,
 # and a subsection the body writes again must be replaced, not kept twice
-if $PY - doc/performance.md "$OUT/keep.md" >"$OUT/keep.log" 2>&1 <<'PYEOF'
+if $PY - $PLOG "$OUT/keep.md" >"$OUT/keep.log" 2>&1 <<'PYEOF'
 import sys
 sys.path.insert(0, "scripts")
 import benchutil

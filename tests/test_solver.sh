@@ -169,7 +169,7 @@ a=$(kry_of "$OUT/disk_sys_cf.log"); b=$(kry_of "$OUT/disk_hyp3.log"); c=$(kry_of
 
 # 13. cases/solver_amgsys_fast.opts (one sweep of the symmetric smoother, GMRES(100), the Jacobian
 #     by coordinate assembly into hypre's format: tuned for the time per Newton iteration rather
-#     than the Krylov iterations, doc/performance.md): the quarter blank of section 10 at 1 and 2
+#     than the Krylov iterations, doc/notes/performance-log.md): the quarter blank of section 10 at 1 and 2
 #     ranks against LU; every option of the file read (no "never used" warning), and the Krylov
 #     counts not those of cases/solver_amgsys.opts
 for np in 1 2; do

@@ -150,7 +150,7 @@ atrito 1 kinkall -options_file cases/kink_retract.opts -newton_keep_contact all 
   [ "$c2" = 0 ] && ok "kink_retract with -newton_keep_contact all: no cut ($i2 Newton iterations; default keep $i1)" ||
     not_ok "kink_retract with -newton_keep_contact all: $c2 cuts (expected none)"
   # the converged states up to the lift-off (steps 1-7; from step 8 on, as the ball leaves, the
-  # transverse force is set by round-off whatever the keep: doc/contact.md)
+  # transverse force is set by round-off whatever the keep: doc/notes/contact-log.md)
   $PY - "$OUT/kink1/contact.csv" "$OUT/kinkall/contact.csv" <<'PYEOF'
 import csv, sys
 a, b = ([r for r in csv.DictReader(open(f)) if r["tool"] == "ball" and int(r["step"]) <= 7] for f in sys.argv[1:3])
@@ -177,7 +177,7 @@ good = f0 < 0 and len(rel) >= 4 and err < 1e-8 and all(v == 0 for v in last)
 print(("ok - " if good else "not ok - ") + f"release: the punch's fz follows {f0:.6g} (1 - s) over the stage to 1e-8 (largest error {err:.2g} of it), zero in springback")
 PYEOF
 grep -q "WARNING: stage springback removes tool" "$OUT/rel_np1.log" && not_ok "the released punch is reported as removed with a force" || ok "no removal warning after the release"
-# the tool's own displacement once it has left the body has no equilibrium value (doc/contact.md):
+# the tool's own displacement once it has left the body has no equilibrium value (doc/notes/contact-log.md):
 # not compared. 1e-7: the last nodes leave the punch as its force reaches zero, at an iterate that
 # the round-off of the two rank counts decides (measured up to 2.4e-8 of the largest force in the
 # springback step, below 1e-12 before it). The counts of nodes in contact may differ by one at the

@@ -1054,7 +1054,7 @@ static void CommittedNormal(const ContactState *cc, double n[3])
    tool's by the extrapolation of the body's motion, which carries a node sliding over a curved
    tool along a chord, off it or into it (the hemisphere with friction, 2.9 mm steps: up to 15 of
    the 30 nodes pressed on the die's fillet, radius 6.35 mm, open at the predictor by up to
-   0.034 mm, and that step took 14 Newton iterations against 6 with them held, doc/performance.md).
+   0.034 mm, and that step took 14 Newton iterations against 6 with them held, doc/notes/performance-log.md).
    A force-driven tool's position is an unknown of the solve, set by the nodes' forces on it,
    which a tangential spring anchored at the predictor would fight: never held. Holding every
    frictional tool's nodes failed the NUMISHEET'93 mild-steel cup at the start of the draw (its
@@ -1140,7 +1140,7 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
          (rotation, ContactFrameCarry: the carried traction does not depend on the frame's
          orientation); a node out of contact forgets its frame (one pressed in the committed
          state too: its committed tangential multipliers are then read on the new chord, an open
-         question, doc/performance.md) */
+         question, doc/notes/performance-log.md) */
       const double lN    = contact->lam_tool[i] == tool ? contact->lam[3 * i] : 0;
       const ContactLaw nl = NodeLaw(contact, i, tool);
       const PetscBool  in = (pr.gap <= 0 || (lN > 0 && lN - nl.KN * pr.gap > 0) || (nl.delta > 0 && lN - nl.KN * pr.gap > -nl.KN * nl.delta) || (nl.reg > 0 && lN - nl.KN * pr.gap > -CONTACT_REG_GAP * nl.KN * nl.reg) || Held(contact, i, tool, nl.mu)) ? PETSC_TRUE : PETSC_FALSE;
@@ -1210,7 +1210,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
      contact at the predictor, where the extrapolation leaves it 0.03-0.12 mm inside the tool: a
      normal force K_N g some 100 times the converged one, and so a friction cone that made it
      stick (K_T held it to the tool) where the converged state has it slip; it flipped to slip at
-     the second iteration (hemisphere with friction: 8-11 such nodes a step, doc/performance.md). */
+     the second iteration (hemisphere with friction: 8-11 such nodes a step, doc/notes/performance-log.md). */
   if (contact->keep >= 2 && !PressedOn(cc, tool)) law.mu = 0;
   /* the multipliers of the current solve (the committed state's at the start of a step) */
   if (contact->lam_tool[i] == tool) {
@@ -1267,7 +1267,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
        by a spring K_T (I - n n^T) (y - y_0) anchored at its position y_0 at the iteration's start
        (the predictor): the slip tangent has no stiffness along the slip, and with the small
        committed forces of such nodes the linearised sheet would slide along the tool as a whole
-       (measured: the hemisphere with friction, doc/performance.md). The spring's force vanishes at
+       (measured: the hemisphere with friction, doc/notes/performance-log.md). The spring's force vanishes at
        the anchor, where the keep's residual is evaluated (the keep ends before the line search);
        its tangent there is K_T (I - n n^T), the terms of dn/dy vanishing with y - y_0, so the
        Jacobian stays the derivative of the residual (-snes_test_jacobian). */

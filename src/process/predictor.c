@@ -9,7 +9,7 @@
 
    so that at the step's end t = t0 + h the correction is h (h + d1) [Uc, U1, U2]. The predictor
    adds beta times it: beta = 0 is the paper's linear extrapolation, beta = 1 the quadratic one.
-   Measured on the hemisphere cases (doc/performance.md, Newton iterations): the quadratic term
+   Measured on the hemisphere cases (doc/notes/performance-log.md, Newton iterations): the quadratic term
    takes most of the extrapolation's error away from the contact zone's edge, but at the edge,
    where a node's path has a kink when it touches the tool, the linear extrapolation leaves the
    nodes entering contact up to 0.12 mm inside the punch and the quadratic one leaves nodes pressed

@@ -85,7 +85,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
 
   {
     const char *kc[] = {"none", "frictionless", "moving", "all", "KeepContact", "KEEP_", NULL};
-    PetscCall(PetscOptionsEList("-newton_keep_contact", "The first Newton iteration of a step (its residual and Jacobian) holds the nodes pressed in the committed state in contact (bilateral) whatever the predictor's gap, the line search and later iterations use the true law: on no tool, on frictionless tools, on those and the frictional tools moved by the step's prescribed displacement (moving), or on those and the frictional tools at rest in the step (all; never a force-driven tool); a held node on a frictional tool keeps the friction of its committed force and a tangential spring anchored at the predictor, and nodes entering contact have no friction in that iteration; default frictionless, moving with -contact_augmented", "doc/performance.md", kc, 4, kc[st->keep_contact], &st->keep_contact, &st->keep_contact_set));
+    PetscCall(PetscOptionsEList("-newton_keep_contact", "The first Newton iteration of a step (its residual and Jacobian) holds the nodes pressed in the committed state in contact (bilateral) whatever the predictor's gap, the line search and later iterations use the true law: on no tool, on frictionless tools, on those and the frictional tools moved by the step's prescribed displacement (moving), or on those and the frictional tools at rest in the step (all; never a force-driven tool); a held node on a frictional tool keeps the friction of its committed force and a tangential spring anchored at the predictor, and nodes entering contact have no friction in that iteration; default frictionless, moving with -contact_augmented", "doc/solvers.md", kc, 4, kc[st->keep_contact], &st->keep_contact, &st->keep_contact_set));
   }
   PetscCall(PetscOptionsBool("-load_predictor_contact", "The predictor of a step moves every node pressed on a tool in the committed state along the tool's normal to its committed gap (the extrapolation or the tangent leave lightly pressed nodes open or pushed in)", NULL, st->pred_contact, &st->pred_contact, NULL));
   PetscCall(PetscOptionsReal("-newton_step_depth", "Energy line search: the Newton step is shortened so that no slave node goes deeper into its tool than this many element sizes normal to the contact face (0: no limit)", NULL, st->step_depth, &st->step_depth, NULL));
@@ -758,7 +758,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
          the line search and every later iteration see the true law). The extrapolation leaves lightly pressed
          nodes a few micrometres off the tool (their committed penetration t_N/K_N is smaller than
          the predictor's error): open, they have no stiffness, and the plastic sheet's Newton step
-         drove them millimetres into the tool, the line search cutting it to 1 % (doc/performance.md) */
+         drove them millimetres into the tool, the line search cutting it to 1 % (doc/notes/performance-log.md) */
       st->r_true0 = -1;
       PetscBool newtonls;
       PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESNEWTONLS, &newtonls)); /* the keep ends at the line search */
@@ -943,7 +943,7 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
     /* growth and shrinking: on the Newton iterations of the hardest solve of the step (all of
        them without augmentation). A step that converged only after many iterations shrinks the
        next one: growing back to the increment that failed makes a phase that needs smaller
-       steps alternate hard steps and cuts (doc/design.md, Load stepping) */
+       steps alternate hard steps and cuts (doc/solvers.md, Load stepping) */
     if (its_max <= st->grow_its) dl = PetscMin(dl * st->grow, sg->dt_max);
     else if (st->shrink_its > 0 && its_max > st->shrink_its) dl = PetscMax(dl * st->shrink, sg->dt_min);
     if (res->checkpoint_interval > 0 && (step % res->checkpoint_interval == 0 || lam_c >= T - tol)) {

@@ -1,5 +1,5 @@
 /* Preconditioner type "amgsys": hypre's BoomerAMG for the displacement unknowns as a system of
-   three functions (x, y, z), each unknown told its component (doc/performance.md, "One million
+   three functions (x, y, z), each unknown told its component (doc/notes/performance-log.md, "One million
    hexahedra").
 
    Why: BoomerAMG coarsens an elasticity matrix well only when it keeps the three displacement

@@ -439,7 +439,7 @@ PetscErrorCode PCSetLUND(PC pc)
   lu->id.ICNTL(4)  = 0;
   lu->id.ICNTL(6)  = 0; /* no permutation by values: the analysis depends on the pattern alone */
   lu->id.ICNTL(7)  = 1;
-  lu->id.ICNTL(8)  = 0; /* no scaling: see doc/design.md */
+  lu->id.ICNTL(8)  = 0; /* no scaling: see doc/notes/design-log.md */
   {
     PetscMPIInt size;
     PetscCallMPI(MPI_Comm_size(comm, &size));

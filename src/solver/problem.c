@@ -414,7 +414,7 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
   PetscCall(PetscMemzero(pb, sizeof(*pb)));
   pb->comm           = comm;
   pb->lu_ordering    = LU_ORDERING_ND;
-  pb->assembly_coo   = PETSC_TRUE; /* coordinate assembly by default: the faster Jacobian (doc/performance.md) */
+  pb->assembly_coo   = PETSC_TRUE; /* coordinate assembly by default: the faster Jacobian (doc/notes/performance-log.md) */
   pb->fault_nan_load = -1;
   pb->near_null      = PETSC_TRUE;
   PetscCallMPI(MPI_Comm_rank(comm, &pb->rank));
@@ -459,12 +459,12 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
    matrix looks each (row, column) up in the row and adds (an entry off the pattern is an error);
    rows of other ranks travel in hypre's own off-processor buffers, made when needed and freed at
    the assembly. So MAT_SORTED_FULL, whose name speaks of the first fill, only changes what is
-   kept, not what is assembled (doc/performance.md, "Where the memory goes").
+   kept, not what is assembled (doc/notes/performance-log.md, "Where the memory goes").
    With coordinate assembly (-assembly_coo 1, cases/solver_amgsys_fast.opts) the matrix is left
    bare: MatSetPreallocationCOO (ProblemSetUp) makes its pattern through an AIJ matrix whose value
    arrays are hypre's own, so each Jacobian's MatSetValuesCOO writes hypre's values in place (no
    auxiliary structure either; about 12 kB more per hexahedron, 2.6 times faster than
-   MatSetValues: doc/performance.md, "The smoother"). */
+   MatSetValues: doc/notes/performance-log.md, "The smoother"). */
 static PetscErrorCode CreateHypreJacobian(Problem *pb, Mat *J)
 {
   const Mesh *m = pb->mesh;
@@ -628,7 +628,7 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   if (pb->lu_ordering == LU_ORDERING_ND) {
     /* LU by MUMPS, unless the options chose another preconditioner or package: MUMPS called
        directly with a METIS nested-dissection ordering (fewer flops than PORD, and balanced
-       subtrees for the ranks; doc/design.md) */
+       subtrees for the ranks; doc/notes/design-log.md) */
     PetscBool     islu;
     MatSolverType st;
     PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &islu));

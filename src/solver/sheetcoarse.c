@@ -1,5 +1,5 @@
 /* A coarse space of plate-like modes for thin sheets: the coarse correction of -pc_type amgsys
-   with -pc_amgsys_sheet_spacing H (src/solver/amg.c; doc/performance.md, "One million
+   with -pc_amgsys_sheet_spacing H (src/solver/amg.c; doc/notes/performance-log.md, "One million
    hexahedra").
 
    Why: BoomerAMG's V-cycle on a sheet of a few hexahedra through its thickness leaves the sheet's

@@ -1,7 +1,7 @@
 /* Patch type "facets": a meshed tool surface (triangles; quadrangles are split in two along their
    shorter diagonal) read from a file (facetsio.c), stored compactly (one vertex array, three
    vertex ids, three neighbours and three corner-normal ids per triangle, a bounding-volume
-   hierarchy in the tool's reference frame), doc/tools.md "Meshed surfaces".
+   hierarchy in the tool's reference frame), doc/notes/tools-log.md "Meshed surfaces".
 
    Parameters: a point of triangle f with local coordinates (u, v) (x = P0 + u (P1 - P0) + v (P2 - P0))
    is (xi, eta) = (4 (f / 1024) + u, 4 (f % 1024) + v): the facet is decoded from the integer part

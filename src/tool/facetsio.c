@@ -2,7 +2,7 @@
    .inp surfaces), read on rank 0 and broadcast, and the construction of a "facets" patch: the
    checks (empty surface, coordinates that are not numbers, zero-area facets, inconsistent
    orientation, non-manifold edges when smoothing), the bounding-volume hierarchy and the corner
-   normals (doc/tools.md "Meshed surfaces"). Every error is one line naming the file and the
+   normals (doc/notes/tools-log.md "Meshed surfaces"). Every error is one line naming the file and the
    entity. */
 #include "facets.h"
 
