@@ -115,15 +115,21 @@ L = ["# The hemispherical punch benchmark", "",
      "`scripts/make_hemisphere_cases.py`); `make run` runs the two main cases and prints the force table.", "",
      "## Cases", "",
      "| case | mesh | tools |", "|---|---|---|",
-     "| `hemisphere_frictionless`, `hemisphere_friction` (the main cases) | seed size: O-grid, 301 hexahedra, 1 layer (the paper: 294) | Coons: the paper's punch construction (3 patches of great-circle arcs per quarter + the plane of its shoulder) with each patch split 3 × 3, die fillet from 4 Coons patches; within 0.02 mm of the sphere and torus |",
-     "| `*_coons3` | seed | the paper's own 3 + 1 punch patches and 1 die patch (their interiors lie up to 0.52 mm inside the sphere and 0.32 mm off the torus) |",
+     "| `hemisphere_frictionless`, `hemisphere_friction` (the main cases) | seed: O-grid, 301 hexahedra, 1 layer | Coons (1) |",
+     "| `*_coons3` | seed | the paper's own Coons patches (2) |",
      "| `*_analytic` | seed | a sphere and a torus |",
-     "| `*_analytic_steps` | seed | a sphere and a torus, at the main cases' load steps and Newton strategy (their `-load_` and `-newton_` options, and growing after every step: the main cases' sequence) |",
+     "| `*_analytic_steps` | seed | a sphere and a torus, the main cases' steps (3) |",
      "| `*_analytic_refined` | 3612 hexahedra, 3 layers | sphere, torus |"]
 if a.fine:
     L.append("| `*_analytic_fine` | 9600 hexahedra, 4 layers | sphere, torus |")
 if a.xfine:
     L.append("| `hemisphere_friction_xfine` | 20400 hexahedra, 4 layers | Coons, as the main cases |")
+L += ["", "(1) The paper's punch construction (3 patches of great-circle arcs per quarter and the plane of",
+      "its shoulder), each patch split 3 × 3, and a die fillet of 4 Coons patches: within 0.02 mm of the",
+      "sphere and the torus. The paper's seed mesh has 294 hexahedra. (2) The paper's own 3 + 1 punch",
+      "patches and 1 die patch, whose interiors lie up to 0.52 mm inside the sphere and 0.32 mm off the",
+      "torus. (3) The main cases' `-load_` and `-newton_` options, growing after every step: the main",
+      "cases' sequence of increments."]
 L += ["", "## Punch force against travel (full sheet, kN)", "", "![force](figures/force_travel.png)", ""]
 cols = [c for c in ["hemisphere_frictionless", "hemisphere_frictionless_analytic", "hemisphere_frictionless_coons3", "hemisphere_frictionless_analytic_refined", "hemisphere_frictionless_analytic_fine", "hemisphere_friction", "hemisphere_friction_analytic", "hemisphere_friction_analytic_refined", "hemisphere_friction_xfine"] if res.get(c)]
 L.append("| travel (mm) | reference | " + " | ".join(c.replace("hemisphere_", "") for c in cols) + " |")

@@ -14,7 +14,8 @@ Checked, with --check or without (the exit status is 1 if any fails, one line pe
   - every anchor (page.md#anchor, #anchor) names a heading of that page;
   - the rendered HTML again: every href and src resolves, every fragment is an id of its page;
   - every figure in doc/figures is shown by some page (an unused figure is a stale one);
-  - a page of the guide (doc/*.md, README.md) has at most MAX_LINES lines and no date but in a
+  - a page of the guide (doc/*.md, README.md) has at most MAX_LINES lines, no table cell longer
+    than MAX_CELL characters (a link's target included), and no date but in a
     table row or a measurement's provenance line ("Measured ... on <date>: <machine>"): history
     belongs to CHANGELOG.md and doc/notes/;
   - every option the code registers is in doc/reference/options.md with a description
@@ -34,6 +35,7 @@ CODE_SPAN = re.compile(r"(`+)(.+?)\1")
 EXTERNAL = re.compile(r"^[a-zA-Z][a-zA-Z0-9+.-]*:")
 DATE = re.compile(r"\b20[0-9]{2}-[01][0-9]-[0-3][0-9]\b")
 MAX_LINES = 300
+MAX_CELL = 160  # characters of a table cell of the guide: a number or a few words, never a paragraph
 
 
 def guide_page(p):
@@ -149,6 +151,11 @@ def check_sources(root, names):
             errors.append("%s: %d lines, more than %d for a page of the guide (move detail to doc/notes/)"
                           % (p, len(lines), MAX_LINES))
         for n, line in enumerate(lines, 1):
+            if line.lstrip().startswith("|"):
+                cell = max(line.strip().strip("|").split("|"), key=len).strip()
+                if len(cell) > MAX_CELL:
+                    errors.append("%s:%d: a table cell of %d characters, more than %d (move the explanation below the table): %.50s..."
+                                  % (p, n, len(cell), MAX_CELL, cell))
             if DATE.search(line) and not line.lstrip().startswith(("|", "Measured")):
                 errors.append("%s:%d: a date outside a table (history goes to CHANGELOG.md or doc/notes/)" % (p, n))
     figdir = os.path.join(root, "doc", "figures")
