@@ -183,6 +183,10 @@ def build(root, names, out):
             heads = [el for el in doc.iter() if el.tag in ("h1", "h2", "h3", "h4", "h5", "h6")]
             for el, s in zip(heads, unique_slugs(["".join(el.itertext()) for el in heads])):
                 el.set("id", s)
+            # a pipe escaped in a table's code span is a pipe (as on the repository's web view)
+            for el in doc.iter("code"):
+                if el.text and "\\|" in el.text:
+                    el.text = type(el.text)(el.text.replace("\\|", "|"))
 
     class Links(Treeprocessor):
         page = ""
