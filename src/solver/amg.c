@@ -84,6 +84,7 @@ typedef struct {
   Vec            *W, *C;      /* M B_k and the rows C_k of the border, on the mesh's rows     */
   Vec             xm, ym, um; /* work on the mesh's rows; um: the iterate's mesh part         */
   PetscScalar    *S;          /* the Schur complement D - C M B, factored (LAPACK getrf)      */
+  PetscBool       sbad;       /* it was singular or not finite: every application fails       */
   PetscBLASInt   *piv;
 } PC_AMGSys;
 
@@ -362,13 +363,23 @@ static PetscErrorCode BorderSetUp(PC pc, Mat J, PetscInt nt, PetscMPIInt owner)
     PetscCall(VecMDot(a->W[k], nt, a->C, dots));
     for (PetscInt i = 0; i < nt; i++) a->S[i + nt * k] -= dots[i];
   }
-  { /* a pivot below 1e-12 of the largest entry: a tool unknown the preconditioner cannot place */
+  { /* a pivot below 1e-12 of the largest entry, or an entry that is not finite: the V-cycle's
+       approximation of A^-1 B (one V-cycle per column) did not hold at this Jacobian (it diverges
+       on a mesh block it cannot smooth), or a tool unknown has no stiffness. Not an error of the
+       run: every application of the preconditioner then gives a vector that is not finite, the
+       Krylov method stops on it (KSP_DIVERGED_NANORINF) and the step is retried smaller, as for
+       any failed linear solve */
     PetscReal smax = 0, pmin = PETSC_MAX_REAL;
-    for (PetscInt i = 0; i < nt * nt; i++) smax = PetscMax(smax, PetscAbsScalar(a->S[i]));
+    PetscBool finite = PETSC_TRUE;
+    for (PetscInt i = 0; i < nt * nt; i++) {
+      if (PetscIsInfOrNanScalar(a->S[i])) finite = PETSC_FALSE;
+      smax = PetscMax(smax, PetscAbsScalar(a->S[i]));
+    }
     PetscCall(PetscBLASIntCast(nt, &bn));
-    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, a->S, &bn, a->piv, &info));
+    if (finite) PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, a->S, &bn, a->piv, &info));
     for (PetscInt i = 0; i < nt; i++) pmin = PetscMin(pmin, PetscAbsScalar(a->S[i + nt * i]));
-    PetscCheck(info == 0 && pmin > 1e-12 * smax, comm, PETSC_ERR_NOT_CONVERGED, "-pc_type amgsys: the Schur complement of the %" PetscInt_FMT " force-driven tool unknowns is singular (smallest pivot %g of %g): a tool driven by force that nothing holds", nt, (double)pmin, (double)smax);
+    a->sbad = (PetscBool)(!finite || info != 0 || !(pmin > 1e-12 * smax));
+    if (a->sbad) PetscCall(PetscPrintf(comm, "amgsys: the Schur complement of the %" PetscInt_FMT " force-driven tool unknowns is singular or not finite (smallest pivot %g of %g): this linear solve fails\n", nt, (double)pmin, (double)smax));
   }
   PetscCall(PetscFree(dots));
   PetscCall(VecDestroy(&e));
@@ -522,6 +533,10 @@ static PetscErrorCode PCApply_AMGSys(PC pc, Vec x, Vec y)
   PetscFunctionBeginUser;
   if (!nt) {
     PetscCall(MeshApply(pc, x, y));
+    PetscFunctionReturn(0);
+  }
+  if (a->sbad) { /* BorderSetUp: the Schur complement was singular; the solve fails and is retried */
+    PetscCall(VecSet(y, NAN));
     PetscFunctionReturn(0);
   }
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
