@@ -14,6 +14,8 @@ Checked, with --check or without (the exit status is 1 if any fails, one line pe
   - every anchor (page.md#anchor, #anchor) names a heading of that page;
   - the rendered HTML again: every href and src resolves, every fragment is an id of its page;
   - every figure in doc/figures is shown by some page (an unused figure is a stale one);
+  - a file of the repository that a guide page names in code (`cases/...`, `scripts/...`, `src/...`,
+    `tests/...`, `include/...`) exists, unless the name is a pattern (`*`, `<t>`, NAME, N);
   - a page of the guide (doc/*.md, README.md) has at most MAX_LINES lines, no table cell longer
     than MAX_CELL characters (a link's target included), and no date but in a
     table row or a measurement's provenance line ("Measured ... on <date>: <machine>"): history
@@ -35,6 +37,8 @@ CODE_SPAN = re.compile(r"(`+)(.+?)\1")
 EXTERNAL = re.compile(r"^[a-zA-Z][a-zA-Z0-9+.-]*:")
 DATE = re.compile(r"\b20[0-9]{2}-[01][0-9]-[0-3][0-9]\b")
 MAX_LINES = 300
+REPO_PATH = re.compile(r"`((?:cases|scripts|src|tests|include)/[A-Za-z0-9_./-]+)`")
+PATTERN = re.compile(r"[*<{\[]|(?<![A-Za-z])[A-Z]{1,5}(?![A-Za-z])")
 MAX_CELL = 160  # characters of a table cell of the guide: a number or a few words, never a paragraph
 
 
@@ -151,6 +155,10 @@ def check_sources(root, names):
             errors.append("%s: %d lines, more than %d for a page of the guide (move detail to doc/notes/)"
                           % (p, len(lines), MAX_LINES))
         for n, line in enumerate(lines, 1):
+            for m in REPO_PATH.finditer(line):
+                path = m.group(1).rstrip(".")
+                if not PATTERN.search(path) and not os.path.exists(os.path.join(root, path)):
+                    errors.append("%s:%d: %s: no such file in the repository" % (p, n, path))
             if line.lstrip().startswith("|"):
                 cell = max(line.strip().strip("|").split("|"), key=len).strip()
                 if len(cell) > MAX_CELL:

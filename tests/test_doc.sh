@@ -3,8 +3,9 @@
 # link, anchor and image resolves, in the pages and in the HTML; every figure is shown by a page;
 # a page of the guide stays within 300 lines, its table cells short and its dates in tables
 # (history belongs to CHANGELOG.md and doc/notes/); the options reference equals what the code
-# registers. A copy of the pages with a broken link, a missing figure, a page too long, a dated
-# sentence and a paragraph in a table cell fails, naming each.
+# registers; the files of the repository a page names exist. A copy of the pages with a broken
+# link, a missing figure, a page too long, a dated sentence, a paragraph in a table cell and a
+# case file that does not exist fails, naming each.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -20,10 +21,12 @@ rm "$t/doc/figures/radial.png"
 seq 1 301 >>"$t/doc/elements.md"
 printf '\nUntil 2026-11-24 the elements did otherwise.\n' >>"$t/doc/materials.md"
 printf '\n| a | b |\n|---|---|\n| 1 | %s |\n' "$(printf 'a paragraph in a cell %.0s' $(seq 1 10))" >>"$t/doc/process.md"
+printf '\nRun `cases/no_such_case.opts`.\n' >>"$t/doc/tutorial.md"
 out=$($PY scripts/make_doc.py --root "$t" --check --no-options 2>&1); rc=$?
 [ $rc -ne 0 ] && grep -q 'doc/README.md:[0-9]*: link getting-startd.md: no such file' <<<"$out" &&
   grep -q 'radial.png: no such file' <<<"$out" && grep -q 'doc/elements.md: [0-9]* lines, more than 300' <<<"$out" &&
   grep -q 'doc/materials.md:[0-9]*: a date outside a table' <<<"$out" &&
   grep -q 'doc/process.md:[0-9]*: a table cell of 2[0-9][0-9] characters' <<<"$out" &&
-  ok "a broken link, a missing figure, a page over 300 lines, a dated sentence and a paragraph in a table cell each fail the check, named" ||
+  grep -q 'doc/tutorial.md:[0-9]*: cases/no_such_case.opts: no such file' <<<"$out" &&
+  ok "a broken link, a missing figure, a page over 300 lines, a dated sentence, a paragraph in a table cell and a case file that does not exist each fail the check, named" ||
   { not_ok "the spoilt pages (exit $rc):"; head -n 12 <<<"$out" | indent; }
