@@ -59,10 +59,12 @@ def pages(root):
 def plain_heading(text):
     """The text GitHub slugs: inline markup removed (code spans keep their text, links their label)."""
     text = re.sub(r"!?\[([^\]]*)\]\([^)]*\)", r"\1", text)
-    text = CODE_SPAN.sub(lambda m: m.group(2), text)
-    text = re.sub(r"<[^>]+>", "", text)
-    text = re.sub(r"(\*\*|__|\*|_(?=\W)|(?<=\W)_)", lambda m: "" if m.group(0) != "_" else "_", text)
-    return html.unescape(text).strip()
+    out, pos = [], 0
+    for m in CODE_SPAN.finditer(text):  # emphasis marks and tags outside code spans only
+        out += [re.sub(r"<[^>]+>|\*\*|__|\*", "", text[pos:m.start()]), m.group(2)]
+        pos = m.end()
+    out.append(re.sub(r"<[^>]+>|\*\*|__|\*", "", text[pos:]))
+    return html.unescape("".join(out)).strip()
 
 
 def slug(text):
@@ -122,14 +124,11 @@ def scan(path):
 
 def check_sources(root, names):
     errors = []
-    anchors = {}
-    for p in names:
-        heads, _ = scan(os.path.join(root, p))
-        anchors[p] = set(unique_slugs(heads))
+    scans = {p: scan(os.path.join(root, p)) for p in names}
+    anchors = {p: set(unique_slugs(heads)) for p, (heads, _) in scans.items()}
     shown = set()
     for p in names:
-        _, links = scan(os.path.join(root, p))
-        for line, image, target in links:
+        for line, image, target in scans[p][1]:
             if EXTERNAL.match(target):
                 continue
             path, _, frag = target.partition("#")

@@ -5,7 +5,8 @@
 # (history belongs to CHANGELOG.md and doc/notes/); the options reference equals what the code
 # registers; the files of the repository a page names exist. A copy of the pages with a broken
 # link, a missing figure, a page too long, a dated sentence, a paragraph in a table cell and a
-# case file that does not exist fails, naming each.
+# case file that does not exist fails, naming each, and with no other fault (the radial figure is
+# shown twice: 7 faults).
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -16,6 +17,7 @@ out=$($PY scripts/make_doc.py --out "$OUT/html" 2>&1); rc=$?
   { not_ok "make doc (exit $rc):"; head -n 20 <<<"$out" | indent; }
 # the same pages, spoilt four ways
 t="$OUT/tampered"; mkdir -p "$t"; cp -r README.md CHANGELOG.md doc "$t/"
+for d in cases scripts src tests include; do ln -s "$PWD/$d" "$t/$d"; done  # the files the pages name
 sed -i '0,/](getting-started.md)/s//](getting-startd.md)/' "$t/doc/README.md"
 rm "$t/doc/figures/radial.png"
 seq 1 301 >>"$t/doc/elements.md"
@@ -28,5 +30,6 @@ out=$($PY scripts/make_doc.py --root "$t" --check --no-options 2>&1); rc=$?
   grep -q 'doc/materials.md:[0-9]*: a date outside a table' <<<"$out" &&
   grep -q 'doc/process.md:[0-9]*: a table cell of 2[0-9][0-9] characters' <<<"$out" &&
   grep -q 'doc/tutorial.md:[0-9]*: cases/no_such_case.opts: no such file' <<<"$out" &&
+  grep -q '^make_doc: 7 fault(s)' <<<"$out" &&
   ok "a broken link, a missing figure, a page over 300 lines, a dated sentence, a paragraph in a table cell and a case file that does not exist each fail the check, named" ||
   { not_ok "the spoilt pages (exit $rc):"; head -n 12 <<<"$out" | indent; }
