@@ -13,6 +13,7 @@
 #include "results.h"
 #include "stage.h"
 #include "linesearch.h"
+#include "activeset.h"
 
 typedef enum { PREDICTOR_NONE = 0, PREDICTOR_EXTRAPOLATE, PREDICTOR_TANGENT, PREDICTOR_AUTO } Predictor;
 
@@ -56,6 +57,7 @@ typedef struct {
   PetscReal ksp_rtol0;     /* -ksp_rtol as set, restored after every Newton solve             */
   PetscReal newton_tol;    /* the Newton solve's tolerance max(atol, rtol |R_0|)               */
   NewtonLineSearch nls;    /* -newton_watchdog: the watchdog line search, or NULL             */
+  NewtonActiveSet  aset;   /* -newton_active_set: the active-set correction, or NULL          */
   /* the Newton monitor */
   Problem  *pb;
   PetscBool stalled;

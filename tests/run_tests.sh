@@ -60,6 +60,7 @@ run solver          bash tests/test_solver.sh
 run hill48-solver   bash tests/test_hill48.sh
 run contact         bash tests/test_contact.sh
 run newton          bash tests/test_newton.sh
+run activeset       bash tests/test_activeset.sh
 run auglag          bash tests/test_auglag.sh
 run hertz           bash tests/test_hertz.sh
 run benchmark       bash tests/test_benchmark.sh

@@ -157,8 +157,14 @@ struct _p_Contact {
      the release's start and end times), the tool (-1: none) */
   PetscReal    *nrel;
   PetscInt     *nrel_tool;
+  /* the linearisation of the last Jacobian (ContactLinearRelease, ContactLinearBlock): per owned
+     slave node its residual (3), tangent (9) and normal (3), and whether it was in contact there
+     by the law (not held by ContactKeepCommitted, its evaluation did not fail) */
+  PetscReal    *lin;
+  char         *lin_ok;
   PetscLogEvent ev_contact, ev_pairing;
 };
+#define NLIN 15
 
 /* The tool's displacement now: along a force-driven direction its unknown, along the others the
    prescribed displacement (plus the held offset). A tool without unknowns: ToolShift. */
@@ -849,6 +855,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
   PetscCall(PetscCalloc2(contact->ns, &contact->cst_c, contact->ns, &contact->cst_t));
   PetscCall(PetscCalloc3(3 * contact->ns, &contact->lam, contact->ns, &contact->lam_tool, 3 * contact->ns, &contact->lam_r));
   PetscCall(PetscCalloc2(NREL * contact->ns, &contact->nrel, contact->ns, &contact->nrel_tool));
+  PetscCall(PetscCalloc2(NLIN * contact->ns, &contact->lin, contact->ns + 1, &contact->lin_ok));
   contact->ns = 0;
   for (PetscInt v = 0; v < m->nv; v++) {
     if (!(mark[v] && m->vowned[v])) continue;
@@ -1018,6 +1025,7 @@ PetscErrorCode ContactDestroy(Contact *c)
     PetscCall(PetscFree2(contact->cst_c, contact->cst_t));
     PetscCall(PetscFree3(contact->lam, contact->lam_tool, contact->lam_r));
     PetscCall(PetscFree2(contact->nrel, contact->nrel_tool));
+    PetscCall(PetscFree2(contact->lin, contact->lin_ok));
     PetscCall(PetscFree2(contact->kn, contact->kt));
     PetscCall(PetscFree(contact->hn));
     PetscCall(PetscFree(contact->tmask));
@@ -1219,6 +1227,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
     tTn[1] = contact->lam[3 * i + 2];
   }
   PetscBool bilateral = PETSC_FALSE;
+  if (K) contact->lin_ok[i] = 0;
   if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0) && !(law.delta > 0 && lN - law.KN * pr.gap > -law.KN * law.delta) && !(law.reg > 0 && lN - law.KN * pr.gap > -CONTACT_REG_GAP * law.KN * law.reg)) { /* open (the kernel's test) */
     if (!Held(contact, i, tool, law.mu)) return 0;
     bilateral = PETSC_TRUE;
@@ -1298,7 +1307,10 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
           for (int c = 0; c < 3; c++) K[3 * r + c] += law.KT * ((r == c) - pr.n[r] * pr.n[c]);
     }
     st->tN = tb;
-  } else st->status = ContactNodeEvalAug(&law, lN, pr.gap, pr.n, dnp, seed, tTn, ds, R, contact->fd ? NULL : K, st->t1, &st->tN, st->tT);
+  } else {
+    st->status = ContactNodeEvalAug(&law, lN, pr.gap, pr.n, dnp, seed, tTn, ds, R, contact->fd ? NULL : K, st->t1, &st->tN, st->tT);
+    if (K && st->status != CONTACT_OPEN) contact->lin_ok[i] = 1;
+  }
   st->has_frame = PETSC_TRUE;
   for (int k = 0; k < 3; k++) {
     st->f[k]  = -R[k];
@@ -1390,12 +1402,18 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
     if (NodeEval(contact, i, y, lambda, R, J ? K : NULL, &contact->cst_t[i])) {
       nfail++;
       if (J) PetscCall(PetscArrayzero(K, 9)); /* keep the coordinate-assembly slots aligned */
+      contact->lin_ok[i] = 0;
       if (!J) continue;
     }
     if (f)
       for (int k = 0; k < 3; k++) f[contact->mesh->vloff[v] + k] += R[k];
     if (J) {
       const PetscInt *sg = contact->sgdof + 3 * i;
+      PetscReal      *ln = contact->lin + NLIN * i;
+      for (int k = 0; k < 3; k++) ln[k] = R[k];
+      for (int k = 0; k < 9; k++) ln[3 + k] = K[k];
+      for (int k = 0; k < 3; k++) ln[12 + k] = contact->pmemo[i].pr.n[k];
+      if (contact->lin_ok[i] && (contact->cst_t[i].tool < 0 || contact->cst_t[i].status == CONTACT_OPEN)) contact->lin_ok[i] = 0;
       if (coo_v) {
         PetscInt m = 0;
         for (int r = 0; r < 3; r++)
@@ -1954,6 +1972,67 @@ PetscErrorCode ContactStatusChanges(Contact contact, ContactToolStatus *ts)
     ts[t].penh    = mx[3 * nt + t];
   }
   PetscCall(PetscFree2(cnt, mx));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactLinearRelease(Contact contact, Vec Y, const PetscReal *ytool, PetscReal tmin, const char *released, PetscInt *n, PetscInt *idx)
+{
+  const PetscScalar *y;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  *n = 0;
+  PetscCall(VecGetOwnershipRange(Y, &rstart, NULL));
+  PetscCall(VecGetArrayRead(Y, &y));
+  for (PetscInt i = 0; i < contact->ns; i++) {
+    const PetscReal *ln = contact->lin + NLIN * i;
+    const PetscInt   t  = contact->cst_t[i].tool;
+    double           u[3], tlin = 0;
+    if (!contact->lin_ok[i] || released[i] || t < 0) continue;
+    /* the step x - Y: the node moves by -Y_i, a force-driven tool by -Y_tool; R_i depends on
+       their difference (ContactAssemble) */
+    for (int k = 0; k < 3; k++) {
+      u[k] = contact->sgdof[3 * i + k] >= 0 ? -PetscRealPart(y[contact->sgdof[3 * i + k] - rstart]) : 0;
+      if (ytool && contact->tc[t].block >= 0 && contact->tc[t].drive[k] == TOOL_DRIVE_FORCE) u[k] += ytool[3 * contact->tc[t].block + k];
+    }
+    for (int r = 0; r < 3; r++) {
+      double Rl = ln[r];
+      for (int c = 0; c < 3; c++) Rl += ln[3 + 3 * r + c] * u[c];
+      tlin -= ln[12 + r] * Rl; /* the normal force n.f, f = -R */
+    }
+    if (tlin < -tmin) idx[(*n)++] = i;
+  }
+  PetscCall(VecRestoreArrayRead(Y, &y));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactLinearBlock(Contact contact, PetscInt i, PetscInt *nd, PetscInt dof[6], PetscReal M[36], PetscReal r[6])
+{
+  const PetscReal *ln = contact->lin + NLIN * i;
+  const PetscInt   t  = contact->cst_t[i].tool, b = t >= 0 ? contact->tc[t].block : -1;
+  PetscInt         comp[6], m = 0;
+  PetscReal        sgn[6];
+
+  PetscFunctionBeginUser;
+  /* the unknowns of the block: the node's free components (sign +1) and its tool's force-driven
+     directions (sign -1: R_i depends on y - d) */
+  for (int k = 0; k < 3; k++)
+    if (contact->sgdof[3 * i + k] >= 0) {
+      dof[m]  = contact->sgdof[3 * i + k];
+      comp[m] = k;
+      sgn[m++] = 1;
+    }
+  for (int k = 0; b >= 0 && k < 3; k++)
+    if (contact->tc[t].drive[k] == TOOL_DRIVE_FORCE) {
+      dof[m]  = contact->tdof0 + 3 * b + k;
+      comp[m] = k;
+      sgn[m++] = -1;
+    }
+  for (PetscInt a = 0; a < m; a++) {
+    r[a] = sgn[a] * ln[comp[a]];
+    for (PetscInt c = 0; c < m; c++) M[6 * a + c] = sgn[a] * sgn[c] * ln[3 + 3 * comp[a] + comp[c]];
+  }
+  *nd = m;
   PetscFunctionReturn(0);
 }
 

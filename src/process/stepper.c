@@ -102,6 +102,7 @@ PetscErrorCode StepperSetFromOptions(MPI_Comm comm, Stepper *st)
   }
   PetscOptionsEnd();
   PetscCall(NewtonLineSearchCreate(comm, &st->nls));
+  PetscCall(NewtonActiveSetCreate(comm, &st->aset));
   {
     PetscInt steps = (PetscInt)(1.0 / st->dt0 + 0.5);
     PetscCall(StagesSetFromOptions(comm, &st->stages, steps, st->dt_max, st->dt_min));
@@ -412,9 +413,19 @@ static PetscErrorCode LineSearchPreCheck(SNESLineSearch ls, Vec X, Vec Y, PetscB
 
   PetscFunctionBeginUser;
   (void)X;
-  (void)Y;
   *changed = PETSC_FALSE;
   if (st->pb && st->pb->contact) PetscCall(ContactKeepCommitted(st->pb->contact, 0));
+  if (st->pb && st->aset) {
+    SNES      snes;
+    KSP       ksp;
+    PetscReal fnorm;
+    Vec       F;
+    PetscCall(SNESLineSearchGetSNES(ls, &snes));
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(SNESLineSearchGetNorms(ls, NULL, &fnorm, NULL));
+    PetscCall(SNESGetFunction(snes, &F, NULL, NULL));
+    PetscCall(NewtonActiveSetApply(st->aset, st->pb, ksp, F, fnorm, Y, changed));
+  }
   if (st->pb && st->domain_backtrack) {
     /* -newton_domain_backtrack: in PETSc's backtracking search a failed trial evaluation reads as
        a residual twice the iterate's (ProblemFormFunction); the other searches as before (the
@@ -974,6 +985,11 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       if (searches) PetscCall(PetscPrintf(pb->comm, "energy line search: %" PetscInt_FMT " searches, %" PetscInt_FMT " residual evaluations, %" PetscInt_FMT " first steps shortened by the contact step limit (-newton_step_depth), %" PetscInt_FMT " backtracked on |R| (-newton_linesearch_contact)\n", searches, etrials, limited, fallback));
     }
   }
+  {
+    PetscInt corrected, released, solves;
+    PetscCall(NewtonActiveSetGetCounts(st->aset, &corrected, &released, &solves));
+    if (corrected) PetscCall(PetscPrintf(pb->comm, "active set: %" PetscInt_FMT " Newton directions corrected for %" PetscInt_FMT " nodes pulled off their tools, %" PetscInt_FMT " solves with the factorisation (-newton_active_set)\n", corrected, released, solves));
+  }
 
   PetscCall(ResultsClose(res));
   PetscCall(VecDestroy(&R));
@@ -981,5 +997,6 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
   PetscCall(VecDestroy(&st->Uhold));
   PetscCall(VecDestroy(&st->Uprev2));
   PetscCall(NewtonLineSearchDestroy(&st->nls)); /* the SNES calls its line search no more */
+  PetscCall(NewtonActiveSetDestroy(&st->aset));
   PetscFunctionReturn(0);
 }

@@ -344,6 +344,70 @@ static PetscErrorCode PCApply_LUND(PC pc, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
+/* several right-hand sides at once (KSPMatSolve, the active-set correction's columns): the columns
+   of the dense X gathered on the host side by side, one MUMPS solve with NRHS of them */
+static PetscErrorCode PCMatApply_LUND(PC pc, Mat X, Mat Y)
+{
+  LUND        *lu;
+  PetscMPIInt  rank;
+  PetscInt     n;
+  PetscScalar *buf = NULL, *b;
+  Vec          c;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &lu));
+  PetscCall(MatGetSize(X, NULL, &n));
+  if (!lu->factored) {
+    for (PetscInt j = 0; j < n; j++) {
+      PetscCall(MatDenseGetColumnVecWrite(Y, j, &c));
+      PetscCall(VecSetInf(c));
+      PetscCall(MatDenseRestoreColumnVecWrite(Y, j, &c));
+    }
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(lu->ev_solve, pc, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)pc), &rank));
+  if (rank == 0) PetscCall(PetscMalloc1(lu->N * n, &buf));
+  for (PetscInt j = 0; j < n; j++) {
+    PetscCall(MatDenseGetColumnVecRead(X, j, &c));
+    PetscCall(VecScatterBegin(lu->toz, c, lu->bseq, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(lu->toz, c, lu->bseq, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(MatDenseRestoreColumnVecRead(X, j, &c));
+    if (rank == 0) {
+      PetscCall(VecGetArray(lu->bseq, &b));
+      PetscCall(PetscArraycpy(buf + lu->N * j, b, lu->N));
+      PetscCall(VecRestoreArray(lu->bseq, &b));
+    }
+  }
+  lu->id.job  = 3;
+  lu->id.nrhs = (MUMPS_INT)n;
+  lu->id.lrhs = (MUMPS_INT)lu->N;
+  lu->id.rhs  = rank == 0 ? buf : NULL;
+  dmumps_c(&lu->id);
+  lu->id.nrhs = 1;
+  for (PetscInt j = 0; j < n; j++) {
+    PetscCall(MatDenseGetColumnVecWrite(Y, j, &c));
+    if (lu->id.INFOG(1) < 0) PetscCall(VecSetInf(c));
+    else {
+      if (rank == 0) {
+        PetscCall(VecGetArray(lu->bseq, &b));
+        PetscCall(PetscArraycpy(b, buf + lu->N * j, lu->N));
+        PetscCall(VecRestoreArray(lu->bseq, &b));
+      }
+      PetscCall(VecScatterBegin(lu->toz, lu->bseq, c, INSERT_VALUES, SCATTER_REVERSE));
+      PetscCall(VecScatterEnd(lu->toz, lu->bseq, c, INSERT_VALUES, SCATTER_REVERSE));
+    }
+    PetscCall(MatDenseRestoreColumnVecWrite(Y, j, &c));
+  }
+  if (lu->id.INFOG(1) < 0) {
+    PetscCall(PetscInfo(pc, "MUMPS solve failed: INFOG(1) = %d\n", (int)lu->id.INFOG(1)));
+    PetscCall(PCSetFailedReason(pc, PC_SUBPC_ERROR));
+  }
+  PetscCall(PetscFree(buf));
+  PetscCall(PetscLogEventEnd(lu->ev_solve, pc, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode PCView_LUND(PC pc, PetscViewer viewer)
 {
   LUND     *lu;
@@ -469,6 +533,7 @@ PetscErrorCode PCSetLUND(PC pc)
   PetscCall(PCShellSetName(pc, "lu-nd"));
   PetscCall(PCShellSetSetUp(pc, PCSetUp_LUND));
   PetscCall(PCShellSetApply(pc, PCApply_LUND));
+  PetscCall(PCShellSetMatApply(pc, PCMatApply_LUND));
   PetscCall(PCShellSetView(pc, PCView_LUND));
   PetscCall(PCShellSetDestroy(pc, PCDestroy_LUND));
   PetscFunctionReturn(0);
