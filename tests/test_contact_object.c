@@ -1,7 +1,8 @@
 /* The contact object (include/contact.h) on a small box mesh pressed onto a rigid plane: nodal
    forces against the closed form K_N times the penetration, the per-tool results (a node touching
    with zero force is not counted as pressed; frictionless contact is neither stick nor slip), and
-   the chattering check for nodes entering and leaving contact with a significant force. Runs on
+   the chattering check for nodes entering and leaving contact with a significant force, and the
+   linear model of the active-set correction (ContactLinearBlock, ContactLinearRelease). Runs on
    1 and 2 ranks: every count is over all ranks. */
 #include <petscsys.h>
 #include "testutil.h"
@@ -298,6 +299,74 @@ int main(int argc, char **argv)
   }
   PetscCall(PetscFree2(u, f));
   PetscCall(TearDown(&s));
+
+  /* the linear model of the active-set correction (ContactLinearBlock, ContactLinearRelease):
+     frictionless, every bottom node pressed by pen; each node's block is its tangent diag(0, 0,
+     K_N) and its residual (0, 0, -K_N pen) on its three unknowns; along a step x - Y that lifts
+     the nodes at x = 0 by 2 pen (the others by pen/2) the linearised normal force of those three
+     is -K_N pen, a pull: they are listed, and none with a threshold above K_N pen */
+  {
+    PetscCount   nco;
+    PetscInt     ns, bad = 0, n, nrel = 0, nrel_hi = 0, *idx;
+    PetscScalar *cv;
+    Mat          Jd;
+    Vec          Y;
+    char        *released;
+    double       err = 0;
+    PetscCall(SetUp(&s, 0.0));
+    nloc = 3 * s.m.nv;
+    PetscCall(PetscCalloc2(nloc, &u, nloc, &f));
+    Displace(&s.m, u, -pen, -pen);
+    PetscCall(ContactSeed(s.c, u, 0, PETSC_TRUE));
+    PetscCall(ContactGetCOO(s.c, &nco, NULL, NULL));
+    PetscCall(PetscCalloc1(nco + 1, &cv));
+    PetscCall(MatCreate(PETSC_COMM_SELF, &Jd));
+    PetscCall(ContactAssemble(s.c, u, 0, NULL, Jd, cv, &nfail));
+    ns = ContactNumSlaves(s.c);
+    for (PetscInt i = 0; i < ns; i++) {
+      PetscInt  nd, dof[6];
+      PetscReal M[36], r[6];
+      PetscCall(ContactLinearBlock(s.c, i, &nd, dof, M, r));
+      if (nd != 3) {
+        bad++;
+        continue;
+      }
+      for (int a = 0; a < 3; a++) {
+        err = PetscMax(err, fabs(r[a] - (a == 2 ? -KN * pen : 0)) / (KN * pen));
+        for (int q = 0; q < 3; q++) err = PetscMax(err, fabs(M[6 * a + q] - (a == 2 && q == 2 ? KN : 0)) / KN);
+      }
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
+    CHECK_ALL(nfail == 0 && bad == 0 && err < 1e-12, "the linear model of the active-set correction: each pressed node's block diag(0, 0, K_N) and residual -K_N pen on its 3 unknowns (relative error %.1e)", err);
+    PetscCall(DMCreateGlobalVector(s.m.dm, &Y));
+    PetscCall(VecZeroEntries(Y));
+    for (PetscInt v = 0; v < s.m.nv; v++)
+      if (s.m.X[3 * v + 2] == 0 && s.m.vowned[v]) {
+        PetscInt d[3];
+        PetscCall(MeshVertexDofs(&s.m, v, d));
+        PetscCall(VecSetValue(Y, d[2], s.m.X[3 * v] == 0 ? -2 * pen : -0.5 * pen, INSERT_VALUES));
+      }
+    PetscCall(VecAssemblyBegin(Y));
+    PetscCall(VecAssemblyEnd(Y));
+    PetscCall(PetscCalloc2(ns + 1, &released, ns + 1, &idx));
+    PetscCall(ContactLinearRelease(s.c, Y, NULL, 0.5 * KN * pen, released, &n, idx));
+    nrel = n;
+    for (PetscInt k = 0; k < n; k++) released[idx[k]] = 1;
+    PetscCall(ContactLinearRelease(s.c, Y, NULL, 0, released, &n, idx)); /* the flagged ones are not listed again */
+    nrel_hi = n;
+    PetscCall(PetscArrayzero(released, ns + 1));
+    PetscCall(ContactLinearRelease(s.c, Y, NULL, 2 * KN * pen, released, &n, idx));
+    nrel_hi += n;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nrel, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nrel_hi, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
+    CHECK_ALL(nrel == 3 && nrel_hi == 0, "the linear model: the 3 nodes a step lifts by 2 pen are pulled (listed: %d), none again once flagged nor with a threshold above K_N pen (%d)", (int)nrel, (int)nrel_hi);
+    PetscCall(PetscFree2(released, idx));
+    PetscCall(VecDestroy(&Y));
+    PetscCall(MatDestroy(&Jd));
+    PetscCall(PetscFree(cv));
+    PetscCall(PetscFree2(u, f));
+    PetscCall(TearDown(&s));
+  }
   PetscCall(PetscFinalize());
   TU_RETURN();
 }
