@@ -31,9 +31,9 @@ typedef struct _n_NewtonActiveSet *NewtonActiveSet;
 
 /* reads -newton_active_set, _max_dofs, _max_it, _rtol, _monitor, _verify; *as NULL when off */
 PetscErrorCode NewtonActiveSetCreate(MPI_Comm comm, NewtonActiveSet *as);
-/* correct the Newton direction Y (the step X - Y; F the residual at X, fnorm its norm) for the nodes its linearisation
+/* correct the Newton direction Y (the step X - Y; F the residual at X, fnorm its norm; zrows[nz] this rank's rows of the conditions a stage switched on, sorted, which the Jacobian holds as identity) for the nodes its linearisation
    pulls off their tools; *changed when it did. ksp holds the factorisation of the Jacobian that gave Y. Collective */
-PetscErrorCode NewtonActiveSetApply(NewtonActiveSet as, Problem *pb, KSP ksp, Vec F, PetscReal fnorm, Vec Y, PetscBool *changed);
+PetscErrorCode NewtonActiveSetApply(NewtonActiveSet as, Problem *pb, KSP ksp, PetscInt nz, const PetscInt *zrows, Vec F, PetscReal fnorm, Vec Y, PetscBool *changed);
 /* released nodes and their solves over the run, and the Newton iterations corrected */
 PetscErrorCode NewtonActiveSetGetCounts(NewtonActiveSet as, PetscInt *corrected, PetscInt *released, PetscInt *solves);
 PetscErrorCode NewtonActiveSetDestroy(NewtonActiveSet *as);

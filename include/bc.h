@@ -68,6 +68,9 @@ PetscReal BCNextKink(const BCs *bcs, PetscReal t);
    (nonzero pattern kept) */
 PetscErrorCode BCConstrainRows(const BCs *bcs, Vec U, Vec F, PetscReal t);
 PetscErrorCode BCConstrainJacobian(BCs *bcs, Mat P);
+/* the global rows of the active switchable conditions on this rank, sorted (the identity rows
+   and columns of the Jacobian; valid until the next call) */
+PetscErrorCode BCSwitchedRows(BCs *bcs, PetscInt *n, const PetscInt **rows);
 /* a holding condition b (-bc_<name>_hold) switched on: its base is the displacement of the global
    vector src at its dofs, copied into the global vector hold (the bases of all holding
    conditions, for the checkpoint); src = hold: the bases from a checkpoint. Collective. */

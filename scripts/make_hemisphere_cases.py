@@ -95,7 +95,7 @@ STEPPING = "-load_steps 40\n-load_dt_max 0.05\n"
 # the Coons cases on the seed and refined meshes: 15 equal increments of the travel on the code's
 # default stepping (the extrapolation predictor with its curvature term), the committed contact held
 # on every tool in a step's first iteration with friction (the moving punch and the die at rest):
-# 75 and 80 Newton iterations on the seed mesh (doc/performance.md, Newton iterations)
+# 75 and 79 Newton iterations on the seed mesh (doc/performance.md, Newton iterations)
 STEPPING_NEWTON = ("# 15 equal steps on the default stepping (doc/performance.md, Newton iterations)\n"
                    "-load_steps 15\n")
 KEEP_ALL = "-newton_keep_contact all\n"

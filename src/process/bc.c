@@ -277,18 +277,30 @@ PetscErrorCode BCConstrainRows(const BCs *bcs, Vec U, Vec F, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BCConstrainJacobian(BCs *bcs, Mat P)
+PetscErrorCode BCSwitchedRows(BCs *bcs, PetscInt *n, const PetscInt **rows)
 {
-  PetscInt n = 0;
-
   PetscFunctionBeginUser;
+  *n    = 0;
+  *rows = NULL;
   if (!bcs->nswitch) PetscFunctionReturn(0);
   for (PetscInt b = 0; b < bcs->n; b++) {
     const BC *bc = &bcs->bc[b];
     if (bc->always || !bc->active) continue;
-    for (PetscInt k = 0; k < bc->nrow; k++) bcs->zrows[n++] = bc->grow[k];
+    for (PetscInt k = 0; k < bc->nrow; k++) bcs->zrows[(*n)++] = bc->grow[k];
   }
-  PetscCall(PetscSortRemoveDupsInt(&n, bcs->zrows));
+  PetscCall(PetscSortRemoveDupsInt(n, bcs->zrows));
+  *rows = bcs->zrows;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BCConstrainJacobian(BCs *bcs, Mat P)
+{
+  PetscInt        n = 0;
+  const PetscInt *rows;
+
+  PetscFunctionBeginUser;
+  if (!bcs->nswitch) PetscFunctionReturn(0);
+  PetscCall(BCSwitchedRows(bcs, &n, &rows));
   /* collective, also on a rank without such rows; the nonzero pattern stays (the LU's analysis) */
   PetscCall(MatSetOption(P, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
   PetscCall(MatSetOption(P, MAT_NO_OFF_PROC_ZERO_ROWS, PETSC_TRUE));

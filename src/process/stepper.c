@@ -424,7 +424,10 @@ static PetscErrorCode LineSearchPreCheck(SNESLineSearch ls, Vec X, Vec Y, PetscB
     PetscCall(SNESGetKSP(snes, &ksp));
     PetscCall(SNESLineSearchGetNorms(ls, NULL, &fnorm, NULL));
     PetscCall(SNESGetFunction(snes, &F, NULL, NULL));
-    PetscCall(NewtonActiveSetApply(st->aset, st->pb, ksp, F, fnorm, Y, changed));
+    PetscInt        nz;
+    const PetscInt *zrows;
+    PetscCall(BCSwitchedRows(st->bcs, &nz, &zrows));
+    PetscCall(NewtonActiveSetApply(st->aset, st->pb, ksp, nz, zrows, F, fnorm, Y, changed));
   }
   if (st->pb && st->domain_backtrack) {
     /* -newton_domain_backtrack: in PETSc's backtracking search a failed trial evaluation reads as

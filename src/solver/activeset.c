@@ -117,7 +117,7 @@ static PetscErrorCode Verify(KSP ksp, Vec F, const PetscReal *blk, PetscInt nblk
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode NewtonActiveSetApply(NewtonActiveSet as, Problem *pb, KSP ksp, Vec F, PetscReal fnorm, Vec Y, PetscBool *changed)
+PetscErrorCode NewtonActiveSetApply(NewtonActiveSet as, Problem *pb, KSP ksp, PetscInt nz, const PetscInt *zrows, Vec F, PetscReal fnorm, Vec Y, PetscBool *changed)
 {
   Contact         contact = pb->contact;
   const PetscInt  ns      = ContactNumSlaves(contact);
@@ -169,13 +169,21 @@ PetscErrorCode NewtonActiveSetApply(NewtonActiveSet as, Problem *pb, KSP ksp, Ve
       PetscReal *b = loc + BLK * k;
       PetscInt   nd, dof[6];
       PetscReal  Mi[36], ri[6];
+      PetscInt   keep[6], nk = 0;
       PetscCall(ContactLinearBlock(contact, idx[k], &nd, dof, Mi, ri));
-      PetscCall(PetscArrayzero(b, BLK));
-      b[0] = (PetscReal)nd;
+      /* the rows and columns of a condition that a stage switched on are identity in the Jacobian:
+         the block has none there */
       for (PetscInt a = 0; a < nd; a++) {
-        b[1 + a]  = (PetscReal)dof[a];
-        b[43 + a] = ri[a];
-        for (PetscInt q = 0; q < nd; q++) b[7 + 6 * a + q] = Mi[6 * a + q];
+        PetscInt loc_z = -1;
+        if (nz) PetscCall(PetscFindInt(dof[a], nz, zrows, &loc_z));
+        if (loc_z < 0) keep[nk++] = a;
+      }
+      PetscCall(PetscArrayzero(b, BLK));
+      b[0] = (PetscReal)nk;
+      for (PetscInt a = 0; a < nk; a++) {
+        b[1 + a]  = (PetscReal)dof[keep[a]];
+        b[43 + a] = ri[keep[a]];
+        for (PetscInt q = 0; q < nk; q++) b[7 + 6 * a + q] = Mi[6 * keep[a] + keep[q]];
       }
     }
     nl = (PetscMPIInt)(BLK * nc);
