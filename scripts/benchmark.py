@@ -62,6 +62,8 @@ def run(case):
     if case in STEPPED:
         cmd += ["-output_dir", "out/" + case]
     t0 = time.time()
+    with open(os.path.join(ROOT, "out", case + ".load"), "w") as f:  # the machine's load when it started
+        f.write(f"{os.getloadavg()[0]:.2f}\n")
     with open(log, "w") as f:
         r = subprocess.run(cmd, cwd=ROOT, env=env, stdout=f, stderr=subprocess.STDOUT)
     print(f"{case}: exit {r.returncode}, {time.time() - t0:.1f} s", file=sys.stderr)
@@ -205,7 +207,13 @@ for c in CASES:
     s = res.get(c)
     if s:
         L.append(f"| {c} | {s['cells']} | {NP[c]} | {s['steps']} | {s['its']} | {s['cuts']} | {s['wall']:.1f} |")
-L += ["", "Wall times on the development machine (2 cores, one rank per case unless stated). Load",
+loads = []
+for c in CASES:
+    lf = os.path.join(ROOT, "out", c + ".load")
+    if res.get(c) and os.path.exists(lf):
+        loads.append(float(open(lf).read()))
+load = f"; the 1-minute load average when each run started: median {float(np.median(loads)):.2f}, largest {max(loads):.2f}" if loads else ""
+L += ["", f"Wall times on the development machine (2 cores, one rank per case unless stated{load}). Load",
       "increments: in the main cases (and `*_analytic_steps`, and the Coons cases of the refined",
       "meshes) 15 steps of 2.67 mm on the code's default stepping, with friction the committed contact",
       "held on every tool in a step's first iteration ([performance.md](performance.md#newton-iterations));",
