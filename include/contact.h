@@ -159,9 +159,10 @@ typedef struct {
    (src/solver/activeset.c). ContactLinearRelease: this rank's slave nodes in contact by the law at
    that Jacobian (not held, not flagged in released[ns]) whose normal force, linearised along the
    step x - Y (ytool: the tool unknowns' part of Y, NULL without), is a pull stronger than tmin;
-   their local indices into idx[ns]. ContactLinearBlock: slave node i's contribution to that Jacobian and residual on
-   its unknowns (its free components, then its tool's force-driven directions; at most 6): the
-   global indices dof[nd], the block M (row-major, leading dimension 6) and the residual r. */
+   their local indices into idx[ns]. ContactLinearBlock: slave node i's contribution to that
+   Jacobian and residual on its unknowns (its free components, then its tool's force-driven
+   directions; at most 6): the global indices dof[nd], the block M (row-major, leading dimension
+   6) and the residual r. */
 PetscErrorCode ContactLinearRelease(Contact c, Vec Y, const PetscReal *ytool, PetscReal tmin, const char *released, PetscInt *n, PetscInt *idx);
 PetscErrorCode ContactLinearBlock(Contact c, PetscInt i, PetscInt *nd, PetscInt dof[6], PetscReal M[36], PetscReal r[6]);
 PetscErrorCode ContactStatusChanges(Contact c, ContactToolStatus *ts);

@@ -123,7 +123,7 @@ PetscErrorCode NewtonActiveSetApply(NewtonActiveSet as, Problem *pb, KSP ksp, Pe
   const PetscInt  ns      = ContactNumSlaves(contact);
   MPI_Comm        comm;
   PetscMPIInt     size;
-  PetscInt       *idx = NULL, *D = NULL, nD = 0, nblk = 0, rstart, rend, round, nrel = 0, cap;
+  PetscInt       *idx = NULL, *D = NULL, nD = 0, nblk = 0, rstart, rend, round, nrel = 0, cap, nD_ok = 0, nblk_ok = 0, nrel_ok = 0;
   PetscReal      *blk = NULL, *loc = NULL, *A = NULL, *M = NULL, *dR = NULL, *yD = NULL, *B = NULL, *z = NULL;
   PetscScalar    *c = NULL;
   char           *released = NULL;
@@ -298,26 +298,34 @@ PetscErrorCode NewtonActiveSetApply(NewtonActiveSet as, Problem *pb, KSP ksp, Pe
       PetscCall(PetscFree(piv));
       if (info) break; /* singular: the last round's direction stands (the same on every rank) */
     }
-    for (PetscInt r = 0; r < nD; r++) {
-      PetscReal s = -dR[r];
-      for (PetscInt q = 0; q < nD; q++) s += M[r + nD * q] * z[q];
-      c[r] = s;
+    {
+      PetscBool finite = PETSC_TRUE;
+      for (PetscInt r = 0; r < nD; r++) {
+        PetscReal v = -dR[r];
+        for (PetscInt q = 0; q < nD; q++) v += M[r + nD * q] * z[q];
+        c[r] = v;
+        if (PetscIsInfOrNanReal(v)) finite = PETSC_FALSE;
+      }
+      if (!finite) break; /* a failed solve with the factorisation: the last round's direction stands */
     }
     PetscCall(VecCopy(Y, as->Yn));
     PetscCall(VecMAXPY(as->Yn, nD, c, as->W));
     applied = PETSC_TRUE;
+    nD_ok   = nD;
+    nblk_ok = nblk;
+    nrel_ok = nrel;
   }
   if (applied && as->verify) {
     PetscReal d;
-    PetscCall(Verify(ksp, F, blk, nblk, as->Yn, &d));
-    PetscCall(PetscPrintf(comm, "      active set verify: %" PetscInt_FMT " nodes, %" PetscInt_FMT " unknowns, relative difference from the direct solve %.3e\n", nrel, nD, (double)d));
+    PetscCall(Verify(ksp, F, blk, nblk_ok, as->Yn, &d));
+    PetscCall(PetscPrintf(comm, "      active set verify: %" PetscInt_FMT " nodes, %" PetscInt_FMT " unknowns, relative difference from the direct solve %.3e\n", nrel_ok, nD_ok, (double)d));
   }
   if (applied) {
     PetscCall(VecCopy(as->Yn, Y));
     *changed = PETSC_TRUE;
     as->corrected++;
-    as->released += nrel;
-    if (as->monitor) PetscCall(PetscPrintf(comm, "      active set: %" PetscInt_FMT " nodes released in %" PetscInt_FMT " rounds, %" PetscInt_FMT " unknowns\n", nrel, round, nD));
+    as->released += nrel_ok;
+    if (as->monitor) PetscCall(PetscPrintf(comm, "      active set: %" PetscInt_FMT " nodes released in %" PetscInt_FMT " rounds, %" PetscInt_FMT " unknowns\n", nrel_ok, round, nD_ok));
   }
   PetscCall(PetscFree6(A, M, dR, yD, B, z));
   PetscCall(PetscFree(c));
