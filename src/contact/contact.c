@@ -1195,6 +1195,7 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
 
   memset(R, 0, 3 * sizeof(double));
   if (K) memset(K, 0, 9 * sizeof(double));
+  if (K) contact->lin_ok[i] = 0; /* set below where the law puts the node in contact (not held) */
   *st = *cc;
   for (int k = 0; k < 3; k++) {
     st->y[k]  = y[k];
@@ -1227,7 +1228,6 @@ static int NodeEval(Contact contact, PetscInt i, const double y[3], PetscReal la
     tTn[1] = contact->lam[3 * i + 2];
   }
   PetscBool bilateral = PETSC_FALSE;
-  if (K) contact->lin_ok[i] = 0;
   if (pr.gap > 0 && !(lN - law.KN * pr.gap > 0) && !(law.delta > 0 && lN - law.KN * pr.gap > -law.KN * law.delta) && !(law.reg > 0 && lN - law.KN * pr.gap > -CONTACT_REG_GAP * law.KN * law.reg)) { /* open (the kernel's test) */
     if (!Held(contact, i, tool, law.mu)) return 0;
     bilateral = PETSC_TRUE;
@@ -1402,7 +1402,7 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
     if (NodeEval(contact, i, y, lambda, R, J ? K : NULL, &contact->cst_t[i])) {
       nfail++;
       if (J) PetscCall(PetscArrayzero(K, 9)); /* keep the coordinate-assembly slots aligned */
-      contact->lin_ok[i] = 0;
+      contact->lin_ok[i] = 0; /* (the finite-difference tangent fails after the law's status) */
       if (!J) continue;
     }
     if (f)
@@ -1413,7 +1413,6 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
       for (int k = 0; k < 3; k++) ln[k] = R[k];
       for (int k = 0; k < 9; k++) ln[3 + k] = K[k];
       for (int k = 0; k < 3; k++) ln[12 + k] = contact->pmemo[i].pr.n[k];
-      if (contact->lin_ok[i] && (contact->cst_t[i].tool < 0 || contact->cst_t[i].status == CONTACT_OPEN)) contact->lin_ok[i] = 0;
       if (coo_v) {
         PetscInt m = 0;
         for (int r = 0; r < 3; r++)
