@@ -101,6 +101,12 @@ PetscErrorCode ContactSetYoungModulus(Contact c, PetscReal E);
 PetscErrorCode ContactSetUp(Contact c, const Mesh *m);
 PetscErrorCode ContactDestroy(Contact *c);
 PetscInt       ContactNumTools(Contact c);
+/* contact pairs between deformable bodies (contact_pair.h), owned by the contact object: their
+   number, the object (for their results), and the node sets whose boundary faces they need from
+   the mesh (MeshSetFaceSets, before MeshCreate) */
+PetscInt       ContactNumPairs(Contact c);
+struct _p_ContactPairs *ContactGetPairs(Contact c);
+PetscErrorCode ContactGetFaceSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN]);
 /* owned slave nodes on this rank */
 PetscInt       ContactNumSlaves(Contact c);
 

@@ -61,6 +61,9 @@ typedef struct {
   /* requested before creation: the sets whose boundary faces give each node a tributary area */
   PetscInt  narea_set;
   char      area_set[8][ATRITO_NAME_LEN];
+  /* requested before creation: the node sets whose boundary faces are marked (MeshSetFaceSets) */
+  PetscInt  nface_set;
+  char      face_set[16][ATRITO_NAME_LEN];
   /* requested before creation: the contact sets, for -partition_balance contact */
   PetscInt  ncontact_set;
   char      contact_set[8][ATRITO_NAME_LEN];
@@ -71,6 +74,16 @@ PetscErrorCode MeshSetFromOptions(MPI_Comm comm, MeshOptions *opt);
 /* before MeshCreate: compute the tributary area of the nodes on the boundary faces of these sets
    (reference configuration, on the serial mesh) and carry it with the distribution */
 PetscErrorCode MeshSetAreaSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN]);
+/* before MeshCreate: mark the boundary faces of these sets (faces of one cell only whose four
+   vertices all lie in the set; a set of elements gives its vertices), so that MeshGetBoundaryFaces
+   lists them on the distributed mesh; repeated names are kept once */
+PetscErrorCode MeshSetFaceSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN]);
+/* the boundary faces of set `set` in this rank's cells (each face is in one cell, so on one rank):
+   nf faces, fv[4 nf] their local vertices in cyclic order counter-clockwise seen from outside the
+   body (the outward normal by the right-hand rule), fc[nf] 6 x their local cell + the face's
+   index in the cell (0-5; fc may be NULL);
+   the caller frees fv and fc */
+PetscErrorCode MeshGetBoundaryFaces(const Mesh *m, const char *set, PetscInt *nf, PetscInt **fv, PetscInt **fc);
 /* before MeshCreate: the sets of the contact slave nodes (balanced by -partition_balance contact) */
 PetscErrorCode MeshSetContactSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN]);
 /* builds, partitions and distributes the mesh; the sections come with MeshSetConstraints */

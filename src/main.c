@@ -127,6 +127,8 @@ static PetscErrorCode Run(PetscBool *stop)
       PetscCall(MeshSetAreaSets(&mesh, na, sets));
       PetscCall(ContactGetSets(contact, &na, &sets));
       PetscCall(MeshSetContactSets(&mesh, na, sets));
+      PetscCall(ContactGetFaceSets(contact, &na, &sets));
+      PetscCall(MeshSetFaceSets(&mesh, na, sets));
       PetscCall(MeshCreate(comm, &mo, &mesh));
       PetscCall(BCComputeMask(&bcs, &mesh, &cmask));
       PetscCall(MeshSetConstraints(&mesh, cmask));

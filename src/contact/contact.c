@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "contact.h"
+#include "contact_pair.h"
 #include "contact_law.h"
 #include "tool.h"
 #include "util.h"
@@ -163,6 +164,7 @@ struct _p_Contact {
   PetscReal    *lin;
   char         *lin_ok;
   PetscLogEvent ev_contact, ev_pairing;
+  ContactPairs  pairs;         /* contact between deformable bodies (contact_pair.h)            */
 };
 #define NLIN 15
 
@@ -256,6 +258,7 @@ PetscErrorCode ContactCreate(MPI_Comm comm, Contact *c)
   PetscCallMPI(MPI_Comm_rank(comm, &(*c)->rank));
   PetscCall(PetscLogEventRegister("AtritoContact", DM_CLASSID, &(*c)->ev_contact));
   PetscCall(PetscLogEventRegister("AtritoPairing", DM_CLASSID, &(*c)->ev_pairing));
+  PetscCall(ContactPairsCreate(comm, &(*c)->pairs));
   PetscFunctionReturn(0);
 }
 
@@ -651,6 +654,7 @@ PetscErrorCode ContactSetFromOptions(Contact c)
     c->tools[t].edge_tol = c->edge_tol >= 0 ? c->edge_tol : 1e-3 * PetscSqrtReal(PetscSqr(b[1] - b[0]) + PetscSqr(b[3] - b[2]) + PetscSqr(b[5] - b[4]));
     PetscCall(ToolContactSetFromOptions(c, t));
   }
+  PetscCall(ContactPairsSetFromOptions(c->pairs));
   PetscFunctionReturn(0);
 }
 
@@ -693,6 +697,17 @@ PetscErrorCode ContactSetYoungModulus(Contact c, PetscReal E)
 {
   PetscFunctionBeginUser;
   c->E_body = E;
+  PetscCall(ContactPairsSetYoungModulus(c->pairs, E));
+  PetscFunctionReturn(0);
+}
+
+PetscInt ContactNumPairs(Contact c) { return ContactPairsNum(c->pairs); }
+ContactPairs ContactGetPairs(Contact c) { return c->pairs; }
+
+PetscErrorCode ContactGetFaceSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN])
+{
+  PetscFunctionBeginUser;
+  PetscCall(ContactPairsGetFaceSets(c->pairs, n, sets));
   PetscFunctionReturn(0);
 }
 
@@ -796,6 +811,7 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
   contact->mesh = m;
   if (contact->symmetry == 0) contact->symmetry = (m->opt.source == MESH_BLANK && m->opt.blank_quarter) ? 4 : 1;
   contact->ns = 0;
+  PetscCall(ContactPairsSetUp(contact->pairs, m));
   if (!contact->ntools) PetscFunctionReturn(0);
   contact->search = contact->search_opt;
   if (contact->search <= 0) { /* default: 5 % of the largest tool's box diagonal */
@@ -1017,6 +1033,7 @@ PetscErrorCode ContactDestroy(Contact *c)
 
   PetscFunctionBeginUser;
   if (!contact) PetscFunctionReturn(0);
+  PetscCall(ContactPairsDestroy(&contact->pairs));
   if (contact->ntools && contact->mesh) {
     PetscCall(PetscFree4(contact->slave, contact->sgdof, contact->seed, contact->has_seed));
     PetscCall(PetscFree2(contact->seedn, contact->yseed));
@@ -1112,6 +1129,7 @@ PetscErrorCode ContactSeed(Contact contact, const PetscScalar *u, PetscReal lamb
       for (int k = 0; k < 3; k++) tc->step_dx[k] = sn[k] - sc[k];
     }
   }
+  PetscCall(ContactPairsSeed(contact->pairs, u, from_committed));
   if (!contact->ns) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(contact->ev_pairing, 0, 0, 0, 0));
   for (PetscInt i = 0; i < contact->ns; i++) {
@@ -1379,6 +1397,9 @@ PetscErrorCode ContactAssemble(Contact contact, const PetscScalar *u, PetscReal 
 
   PetscFunctionBeginUser;
   *nfail_out = 0;
+  PetscCheck(!ContactPairsNum(contact->pairs) || !coo_v, PETSC_COMM_SELF, PETSC_ERR_PLIB, "contact pairs need the MatSetValues assembly");
+  PetscCall(ContactPairsAssemble(contact->pairs, u, f, J, &nfail));
+  *nfail_out = nfail;
   if (!contact->ns && !(nb && J)) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(contact->ev_contact, 0, 0, 0, 0));
   if (nb && J) PetscCall(PetscCalloc2(9 * nb, &kt, nb, &nact));
@@ -1651,6 +1672,7 @@ static inline PetscBool Pressed(const ContactState *st) { return (st->status != 
 PetscErrorCode ContactCommit(Contact contact, PetscReal lambda)
 {
   PetscFunctionBeginUser;
+  PetscCall(ContactPairsCommit(contact->pairs));
   if (contact->ns) PetscCall(PetscArraycpy(contact->cst_c, contact->cst_t, contact->ns));
   /* the penalties' factor the next step starts from (-contact_augmented_growth_keep) */
   if (contact->aug && contact->aug_keep) contact->kscale_c = contact->kscale;
@@ -2038,6 +2060,7 @@ PetscErrorCode ContactLinearBlock(Contact contact, PetscInt i, PetscInt *nd, Pet
 PetscErrorCode ContactRecordActive(Contact contact)
 {
   PetscFunctionBeginUser;
+  PetscCall(ContactPairsRecordActive(contact->pairs));
   for (PetscInt i = 0; i < contact->ns; i++) {
     contact->active_prev[i] = contact->cst_t[i].status != CONTACT_OPEN;
     contact->tN_prev[i]     = contact->cst_t[i].status != CONTACT_OPEN ? contact->cst_t[i].tN : 0;
@@ -2154,6 +2177,7 @@ PetscErrorCode ContactGetNodeFields(Contact contact, PetscReal *cg, PetscReal *c
     csl[r] = st->slip;
     for (int k = 0; k < 3; k++) ct[3 * r + k] = st->fT[k];
   }
+  PetscCall(ContactPairsGetNodeFields(contact->pairs, cg, cn, ct, cst, csl));
   PetscFunctionReturn(0);
 }
 

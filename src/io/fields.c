@@ -93,7 +93,7 @@ PetscErrorCode FieldsWriteStep(Results *res, Problem *pb, PetscInt step, PetscRe
   PetscCall(AddField(rc, "plastic_strain", 1, ep, &cf[ncf++], &store[ns++]));
   PetscCall(AddField(rc, "von_mises", 1, mises, &cf[ncf++], &store[ns++]));
   if (res->thickness) PetscCall(AddField(rc, "thickness_strain", 1, thick, &cf[ncf++], &store[ns++]));
-  if (ContactNumTools(pb->contact)) {
+  if (ContactNumTools(pb->contact) || ContactNumPairs(pb->contact)) {
     /* contact node fields: gap, normal force (a nodal force, not a pressure), tangential (friction)
        force, status, accumulated slip */
     PetscReal *cg, *cn, *ct, *cst, *csl;

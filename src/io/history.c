@@ -18,6 +18,7 @@
    pressed nodes), augmentations (Newton solves of the step with -contact_augmented, 0 without)
    and multiplier_change (the largest change of a nodal multiplier in the step's last update), and
    last stage (as in history.csv). */
+#include "contact_pair.h"
 #include <stdio.h>
 #include <string.h>
 #include "results.h"
@@ -78,7 +79,7 @@ PetscErrorCode ContactHistoryOpen(Results *res, Problem *pb, PetscBool append)
 {
   PetscFunctionBeginUser;
   res->chist = NULL;
-  if (!ContactNumTools(pb->contact)) PetscFunctionReturn(0);
+  if (!ContactNumTools(pb->contact) && !ContactNumPairs(pb->contact)) PetscFunctionReturn(0);
   PetscCall(CsvOpen(res, pb, "contact.csv", append, &res->chist));
   if (pb->rank) PetscFunctionReturn(0);
   if (!append) fprintf(res->chist, "step,time,tool,travel,force,force_full,newton_its,active,stick,slip,max_penetration,dx,dy,dz,path_length,fx,fy,fz,force_normal,force_tangential,mean_penetration,augmentations,multiplier_change,stage\n");
@@ -95,6 +96,18 @@ PetscErrorCode ContactHistoryWrite(Results *res, Problem *pb, PetscInt step, Pet
     if (!pb->rank) {
       char      line[1024];
       const int len = snprintf(line, sizeof(line), "%" PetscInt_FMT ",%.12g,%s,%.12g,%.12e,%.12e,%" PetscInt_FMT ",%d,%d,%d,%.6e,%.12g,%.12g,%.12g,%.12g,%.12e,%.12e,%.12e,%.12e,%.12e,%.6e,%d,%.6e,%s\n", step, (double)time, r.name, r.travel, r.force, r.force * (double)ContactSymmetry(pb->contact), its, (int)r.active, (int)r.stick, (int)r.slip, r.max_pen, r.shift[0], r.shift[1], r.shift[2], r.path, r.f[0], r.f[1], r.f[2], r.fn, r.ft, r.mean_pen, (int)r.augmentations, r.dlambda, stage);
+      fwrite(line, 1, (size_t)len, res->chist);
+      fflush(res->chist);
+    }
+  }
+  /* a contact pair between bodies: its name as the tool's; force the sum of the slave nodes'
+     normal forces, f the resultant on the slave set; no travel, path or multipliers */
+  for (PetscInt k = 0; k < ContactNumPairs(pb->contact); k++) {
+    ContactPairResult r;
+    PetscCall(ContactPairsGetResult(ContactGetPairs(pb->contact), k, &r));
+    if (!pb->rank) {
+      char      line[1024];
+      const int len = snprintf(line, sizeof(line), "%" PetscInt_FMT ",%.12g,%s,0,%.12e,%.12e,%" PetscInt_FMT ",%d,%d,%d,%.6e,0,0,0,0,%.12e,%.12e,%.12e,%.12e,%.12e,0,0,0,%s\n", step, (double)time, r.name, r.fn, r.fn * (double)ContactSymmetry(pb->contact), its, (int)r.active, (int)r.stick, (int)r.slip, r.max_pen, r.f[0], r.f[1], r.f[2], r.fn, r.ft, stage);
       fwrite(line, 1, (size_t)len, res->chist);
       fflush(res->chist);
     }

@@ -88,7 +88,7 @@ PetscErrorCode ResultsWriteStep(Results *res, Problem *pb, PetscInt step, PetscR
 {
   PetscFunctionBeginUser;
   PetscCall(HistoryWrite(res, pb, step, lambda, its, r0, r, stage));
-  if (ContactNumTools(pb->contact)) PetscCall(ContactHistoryWrite(res, pb, step, lambda, its, stage)); /* collective: every rank */
+  if (ContactNumTools(pb->contact) || ContactNumPairs(pb->contact)) PetscCall(ContactHistoryWrite(res, pb, step, lambda, its, stage)); /* collective: every rank */
   if (res->of && (step % res->interval == 0 || last)) PetscCall(FieldsWriteStep(res, pb, step, lambda));
   PetscFunctionReturn(0);
 }

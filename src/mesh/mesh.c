@@ -364,58 +364,126 @@ static int FaceRecCmp(const void *a, const void *b)
   return 0;
 }
 
+static const int hexface[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+
+/* Rank 0: the boundary faces among those whose four vertices are all marked: faces no other cell
+   has (the same four vertices). Each as its cell and its face (hexface: corners in cyclic order,
+   counter-clockwise seen from outside the cell). */
+static PetscErrorCode SerialBoundaryFaces(const MeshData *md, const PetscBool *mark, PetscInt *nb, FaceRec **out)
+{
+  FaceRec *fr = NULL;
+  PetscInt nf = 0, m = 0;
+
+  PetscFunctionBeginUser;
+  for (int pass = 0; pass < 2; pass++) { /* count the faces in the set, then list them */
+    if (pass) PetscCall(PetscMalloc1(nf + 1, &fr));
+    nf = 0;
+    for (PetscInt e = 0; e < md->ne; e++)
+      for (int k = 0; k < 6; k++) {
+        PetscBool all = PETSC_TRUE;
+        for (int j = 0; j < 4; j++) all = all && mark[md->conn[8 * e + hexface[k][j]]];
+        if (!all) continue;
+        if (pass) {
+          for (int j = 0; j < 4; j++) fr[nf].key[j] = md->conn[8 * e + hexface[k][j]];
+          PetscCall(PetscSortInt(4, fr[nf].key));
+          fr[nf].cell = e;
+          fr[nf].face = k;
+        }
+        nf++;
+      }
+  }
+  qsort(fr, (size_t)nf, sizeof(FaceRec), FaceRecCmp);
+  for (PetscInt f = 0; f < nf;) {
+    PetscInt g = f + 1;
+    while (g < nf && !FaceRecCmp(&fr[f], &fr[g])) g++;
+    if (g == f + 1) fr[m++] = fr[f]; /* on the boundary */
+    f = g;
+  }
+  *nb  = m;
+  *out = fr;
+  PetscFunctionReturn(0);
+}
+
+/* Rank 0: the vertices of set `name` (a node set, or the vertices of an element set) marked; -1 if
+   there is no such set */
+static PetscErrorCode SerialMarkSet(const MeshData *md, char (*names)[ATRITO_NAME_LEN], const PetscInt *is_cell, PetscInt nnames, const char *name, PetscBool *mark, PetscInt *set)
+{
+  PetscFunctionBeginUser;
+  *set = -1;
+  for (PetscInt i = 0; i < nnames && *set < 0; i++) {
+    PetscBool eq;
+    PetscCall(PetscStrcmp(names[i], name, &eq));
+    if (eq) *set = i;
+  }
+  if (*set < 0) PetscFunctionReturn(0);
+  PetscCall(PetscArrayzero(mark, md->nv));
+  if (!is_cell[*set])
+    for (PetscInt k = 0; k < md->nsets[*set].n; k++) mark[md->nsets[*set].idx[k]] = PETSC_TRUE;
+  else
+    for (PetscInt k = 0; k < md->elsets[*set - md->nnset].n; k++)
+      for (PetscInt a = 0; a < 8; a++) mark[md->conn[8 * md->elsets[*set - md->nnset].idx[k] + a]] = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SerialContactAreas(const Mesh *mesh, const MeshData *md, char (*names)[ATRITO_NAME_LEN], const PetscInt *is_cell, PetscInt nnames, PetscReal *area)
 {
-  static const int hexface[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-  PetscBool       *mark;
-  FaceRec         *fr = NULL;
+  PetscBool *mark;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(md->nv, &mark));
   for (PetscInt s = 0; s < mesh->narea_set; s++) {
-    PetscInt set = -1, nf = 0;
-    for (PetscInt i = 0; i < nnames && set < 0; i++) {
-      PetscBool eq;
-      PetscCall(PetscStrcmp(names[i], mesh->area_set[s], &eq));
-      if (eq) set = i;
-    }
+    PetscInt set, nf;
+    FaceRec *fr;
+    PetscCall(SerialMarkSet(md, names, is_cell, nnames, mesh->area_set[s], mark, &set));
     if (set < 0) continue; /* reported by ContactSetUp */
-    PetscCall(PetscArrayzero(mark, md->nv));
-    if (!is_cell[set])
-      for (PetscInt k = 0; k < md->nsets[set].n; k++) mark[md->nsets[set].idx[k]] = PETSC_TRUE;
-    else
-      for (PetscInt k = 0; k < md->elsets[set - md->nnset].n; k++)
-        for (PetscInt a = 0; a < 8; a++) mark[md->conn[8 * md->elsets[set - md->nnset].idx[k] + a]] = PETSC_TRUE;
-    for (int pass = 0; pass < 2; pass++) { /* count the faces in the set, then list them */
-      if (pass) PetscCall(PetscMalloc1(nf, &fr));
-      nf = 0;
-      for (PetscInt e = 0; e < md->ne; e++)
-        for (int k = 0; k < 6; k++) {
-          PetscBool all = PETSC_TRUE;
-          for (int j = 0; j < 4; j++) all = all && mark[md->conn[8 * e + hexface[k][j]]];
-          if (!all) continue;
-          if (pass) {
-            for (int j = 0; j < 4; j++) fr[nf].key[j] = md->conn[8 * e + hexface[k][j]];
-            PetscCall(PetscSortInt(4, fr[nf].key));
-            fr[nf].cell = e;
-            fr[nf].face = k;
-          }
-          nf++;
-        }
+    PetscCall(SerialBoundaryFaces(md, mark, &nf, &fr));
+    for (PetscInt f = 0; f < nf; f++) {
+      const PetscInt *c = md->conn + 8 * fr[f].cell;
+      double          x[4][3], af[4];
+      for (int j = 0; j < 4; j++)
+        for (int d = 0; d < 3; d++) x[j][d] = md->X[3 * c[hexface[fr[f].face][j]] + d];
+      ContactQuadAreas(x, af);
+      for (int j = 0; j < 4; j++) area[c[hexface[fr[f].face][j]]] += af[j];
     }
-    qsort(fr, (size_t)nf, sizeof(FaceRec), FaceRecCmp);
-    for (PetscInt f = 0; f < nf;) {
-      PetscInt g = f + 1;
-      while (g < nf && !FaceRecCmp(&fr[f], &fr[g])) g++;
-      if (g == f + 1) { /* on the boundary */
-        const PetscInt *c = md->conn + 8 * fr[f].cell;
-        double          x[4][3], af[4];
-        for (int j = 0; j < 4; j++)
-          for (int d = 0; d < 3; d++) x[j][d] = md->X[3 * c[hexface[fr[f].face][j]] + d];
-        ContactQuadAreas(x, af);
-        for (int j = 0; j < 4; j++) area[c[hexface[fr[f].face][j]]] += af[j];
-      }
-      f = g;
+    PetscCall(PetscFree(fr));
+  }
+  PetscCall(PetscFree(mark));
+  PetscFunctionReturn(0);
+}
+
+/* the cell label that marks the boundary faces of node set `set` (MeshSetFaceSets) */
+static void FaceLabelName(const char *set, char name[ATRITO_NAME_LEN + 16])
+{
+  snprintf(name, ATRITO_NAME_LEN + 16, "__faces_%s", set);
+}
+
+/* Rank 0, on the serial DM: for every face set, the label whose value on a cell is the bit mask of
+   its faces (1 << k, hexface k) that lie on the boundary with their four vertices in the set. The
+   label travels with the cells through the distribution. A set that does not exist gets an empty
+   label (reported by the module that asked). */
+static PetscErrorCode SerialFaceLabels(const Mesh *mesh, DM dm, const MeshData *md, char (*names)[ATRITO_NAME_LEN], const PetscInt *is_cell, PetscInt nnames)
+{
+  PetscBool *mark = NULL;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)dm), &rank));
+  if (!rank) PetscCall(PetscMalloc1(md->nv, &mark));
+  for (PetscInt s = 0; s < mesh->nface_set; s++) {
+    char     lname[ATRITO_NAME_LEN + 16];
+    PetscInt set, nf;
+    FaceRec *fr;
+    FaceLabelName(mesh->face_set[s], lname);
+    PetscCall(DMCreateLabel(dm, lname));
+    if (rank) continue;
+    PetscCall(SerialMarkSet(md, names, is_cell, nnames, mesh->face_set[s], mark, &set));
+    if (set < 0) continue;
+    PetscCall(SerialBoundaryFaces(md, mark, &nf, &fr));
+    for (PetscInt f = 0; f < nf; f++) {
+      PetscInt v;
+      PetscCall(DMGetLabelValue(dm, lname, fr[f].cell, &v));
+      if (v >= 0) PetscCall(DMClearLabelValue(dm, lname, fr[f].cell, v));
+      PetscCall(DMSetLabelValue(dm, lname, fr[f].cell, (v < 0 ? 0 : v) | (1 << fr[f].face)));
     }
     PetscCall(PetscFree(fr));
   }
@@ -499,6 +567,8 @@ PetscErrorCode MeshCreate(MPI_Comm comm, const MeshOptions *opt, Mesh *pb)
         for (PetscInt k = 0; k < md.elsets[i - md.nnset].n; k++) PetscCall(DMSetLabelValue(dm, names[i], md.elsets[i - md.nnset].idx[k], 1));
     }
   }
+
+  PetscCall(SerialFaceLabels(pb, dm, &md, names, is_cell, nnames));
 
   /* source ids (and tributary areas) as a field on the serial mesh, carried through distribution */
   PetscSection   idsec;
@@ -662,6 +732,54 @@ PetscErrorCode MeshSetContactSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_
 {
   PetscFunctionBeginUser;
   PetscCall(SetNames(n, sets, &m->ncontact_set, m->contact_set, "contact sets are balanced by the partition"));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MeshSetFaceSets(Mesh *m, PetscInt n, char (*sets)[ATRITO_NAME_LEN])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; i++) {
+    PetscBool dup = PETSC_FALSE;
+    for (PetscInt j = 0; j < m->nface_set && !dup; j++) PetscCall(PetscStrcmp(m->face_set[j], sets[i], &dup));
+    if (dup) continue;
+    PetscCheck(m->nface_set < 16, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "at most 16 sets of boundary faces (contact pairs' surfaces), got more");
+    PetscCall(PetscStrncpy(m->face_set[m->nface_set++], sets[i], ATRITO_NAME_LEN));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MeshGetBoundaryFaces(const Mesh *m, const char *set, PetscInt *nf, PetscInt **fv, PetscInt **fc)
+{
+  char     lname[ATRITO_NAME_LEN + 16];
+  DMLabel  label;
+  PetscInt cStart, cEnd, n = 0;
+
+  PetscFunctionBeginUser;
+  FaceLabelName(set, lname);
+  PetscCall(DMGetLabel(m->dm, lname, &label));
+  PetscCheck(label, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE, "the boundary faces of set '%s' were not asked for before the mesh was made (MeshSetFaceSets)", set);
+  PetscCall(DMPlexGetHeightStratum(m->dm, 0, &cStart, &cEnd));
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass) {
+      PetscCall(PetscMalloc1(4 * n + 1, fv));
+      if (fc) PetscCall(PetscMalloc1(n + 1, fc));
+    }
+    n = 0;
+    for (PetscInt c = cStart; c < cEnd; c++) {
+      PetscInt v;
+      PetscCall(DMLabelGetValue(label, c, &v));
+      if (v <= 0) continue;
+      for (int k = 0; k < 6; k++) {
+        if (!((v >> k) & 1)) continue;
+        if (pass) {
+          for (int j = 0; j < 4; j++) (*fv)[4 * n + j] = m->cv[8 * (c - cStart) + hexface[k][j]];
+          if (fc) (*fc)[n] = 6 * (c - cStart) + k;
+        }
+        n++;
+      }
+    }
+  }
+  *nf = n;
   PetscFunctionReturn(0);
 }
 

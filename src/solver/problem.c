@@ -420,7 +420,7 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
   PetscCallMPI(MPI_Comm_rank(comm, &pb->rank));
   PetscCallMPI(MPI_Comm_size(comm, &pb->size));
   PetscOptionsBegin(comm, NULL, "Assembly and linear solver", NULL);
-  PetscCall(PetscOptionsBool("-assembly_coo", "Assemble the Jacobian in coordinate form (faster, more memory)", NULL, pb->assembly_coo, &pb->assembly_coo, NULL));
+  PetscCall(PetscOptionsBool("-assembly_coo", "Assemble the Jacobian in coordinate form (faster, more memory; not with contact pairs, whose pattern changes)", NULL, pb->assembly_coo, &pb->assembly_coo, &pb->assembly_coo_set));
   PetscCall(PetscOptionsString("-assembly_mat_type", "Matrix type of the Jacobian (default: the mesh's, AIJ; hypre: assembled in hypre's format, which -pc_type hypre then uses without a copy)", NULL, pb->mat_type, pb->mat_type, sizeof(pb->mat_type), NULL));
   PetscCall(PetscOptionsBool("-assembly_near_null_space", "Attach the six rigid-body modes to the Jacobian as its near null space (GAMG's coarse spaces; BoomerAMG uses them only with -pc_hypre_boomeramg_vec_interp_variant, but PCHYPRE copies them)", NULL, pb->near_null, &pb->near_null, NULL));
   {
@@ -501,6 +501,14 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   pb->contact  = contact;
   pb->material = mat;
   pb->element  = el;
+  if (ContactNumPairs(contact)) {
+    /* contact between bodies couples each slave node with the nodes of the face it meets: a
+       pattern that changes as the bodies slide, so the Jacobian is assembled by MatSetValues and
+       takes new nonzeros (the LU analyses a changed pattern again) */
+    PetscCheck(!(pb->assembly_coo && pb->assembly_coo_set), pb->comm, PETSC_ERR_USER_INPUT, "-assembly_coo 1: not with contact pairs (-pair_names), whose Jacobian pattern changes; leave it out");
+    PetscCheck(!pb->mat_type[0], pb->comm, PETSC_ERR_USER_INPUT, "-assembly_mat_type %s: not with contact pairs (-pair_names), whose Jacobian pattern changes; leave it out", pb->mat_type);
+    pb->assembly_coo = PETSC_FALSE;
+  }
   PetscCall(MaterialGetKernel(mat, &pb->mk));
   PetscCall(ElementGetKernel(el, &pb->ek));
   PetscCheck(pb->ek->nen == 8, pb->comm, PETSC_ERR_SUP, "-element_type %s: the mesh has 8-node hexahedra, the element %d nodes", pb->ek->name, pb->ek->nen);
@@ -583,7 +591,8 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
     }
   }
   if (pb->near_null) PetscCall(SetNearNullSpace(pb, pb->J));
-  if (!(pb->ntu && pb->assembly_coo)) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE)); /* (not before the preallocation of an extended matrix) */
+  if (ContactNumPairs(contact)) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  else if (!(pb->ntu && pb->assembly_coo)) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE)); /* (not before the preallocation of an extended matrix) */
   if (pb->assembly_coo) {
     /* coordinate assembly: the element blocks' (i, j) once, then the contact blocks; each
        Jacobian then only fills values */
