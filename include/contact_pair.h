@@ -60,4 +60,10 @@ PetscErrorCode ContactPairsGetResult(ContactPairs p, PetscInt k, ContactPairResu
 /* nodes that entered or left contact since ContactPairsRecordActive (collective count) */
 PetscErrorCode ContactPairsRecordActive(ContactPairs p);
 PetscErrorCode ContactPairsChanges(ContactPairs p, PetscInt *nchange);
+/* checkpoint: the committed states of the slave nodes as rows of the owned vertices (width
+   ContactPairsCheckpointWidth; zero rows elsewhere) and back; the unpack takes the committed
+   local displacement uc (with boundary values) for the master faces' committed positions */
+PetscInt       ContactPairsCheckpointWidth(ContactPairs p);
+PetscErrorCode ContactPairsCheckpointPack(ContactPairs p, PetscReal *rows);
+PetscErrorCode ContactPairsCheckpointUnpack(ContactPairs p, const PetscReal *rows, const PetscScalar *uc, const char *path);
 #endif

@@ -42,6 +42,7 @@ run loadcurve-np1   mpiexec -n 1 bin/test_loadcurve
 run loadcurve-np2   mpiexec -n 2 bin/test_loadcurve
 run tool            bin/test_tool
 run contact-kernels bin/test_contact
+run nts             bin/test_nts
 run contact-object-np1 mpiexec -n 1 bin/test_contact_object
 run contact-object-np2 mpiexec -n 2 bin/test_contact_object
 run toolforce-np1   mpiexec -n 1 bin/test_toolforce
@@ -63,6 +64,7 @@ run newton          bash tests/test_newton.sh
 run activeset       bash tests/test_activeset.sh
 run auglag          bash tests/test_auglag.sh
 run hertz           bash tests/test_hertz.sh
+run pairs           bash tests/test_pairs.sh
 run benchmark       bash tests/test_benchmark.sh
 run facets          bash tests/test_facets.sh
 run partition       bash tests/test_partition.sh

@@ -141,7 +141,9 @@ PetscErrorCode ContactPairsSetFromOptions(ContactPairs p)
     s->kfactor = 1;
     s->kratio  = 0.1;
     s->search  = -1;
-    PetscOptionsBegin(comm, prefix, "Contact pair", "doc/contact.md");
+    char title[ATRITO_NAME_LEN + 8];
+    PetscCall(PetscSNPrintf(title, sizeof(title), "Pair %s", s->name));
+    PetscOptionsBegin(comm, prefix, title, "doc/contact.md");
     PetscCall(PetscOptionsString("-slave", "Node set of the slave nodes", "doc/contact.md", s->slave, s->slave, sizeof(s->slave), &hs));
     PetscCall(PetscOptionsString("-master", "Node set of the master surface: the boundary faces whose four nodes lie in it", "doc/contact.md", s->master, s->master, sizeof(s->master), &hm));
     PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient", "doc/contact.md", s->mu, &s->mu, NULL));
@@ -301,9 +303,18 @@ static PetscErrorCode SideSetUp(ContactPairs p, PairSide *sd)
   g[1] = sd->ns;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, g, 2, MPIU_INT, MPI_SUM, p->comm));
   {
-    PetscInt fl = found ? 1 : 0;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fl, 1, MPIU_INT, MPI_MAX, p->comm));
-    PetscCheck(fl, p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_%s: no node set '%s' in the mesh", s->name, sd->weight < 1 && strcmp(sd->sset, s->slave) ? "master" : "slave", sd->sset);
+    /* both sets must exist (the master's is looked up like the slave's) */
+    PetscBool  fm;
+    PetscInt   fl[2];
+    PetscBool *mm;
+    PetscCall(PetscCalloc1(m->nv, &mm));
+    PetscCall(MeshMarkSetVertices(m, sd->mset, mm, &fm));
+    PetscCall(PetscFree(mm));
+    fl[0] = found ? 1 : 0;
+    fl[1] = fm ? 1 : 0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fl, 2, MPIU_INT, MPI_MAX, p->comm));
+    PetscCheck(fl[0], p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_%s: the mesh has no set named '%s'", s->name, strcmp(sd->sset, s->slave) ? "master" : "slave", sd->sset);
+    PetscCheck(fl[1], p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_%s: the mesh has no set named '%s'", s->name, strcmp(sd->mset, s->master) ? "slave" : "master", sd->mset);
   }
   PetscCheck(g[0] > 0, p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_%s %s: the set has no boundary faces (a master surface needs faces of the body's boundary whose four nodes all lie in the set)", s->name, strcmp(sd->mset, s->master) ? "slave" : "master", sd->mset);
   PetscCheck(g[1] > 0, p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_slave %s: the set has no nodes", s->name, sd->sset);
@@ -523,7 +534,8 @@ static PetscErrorCode SideRefresh(ContactPairs p, PairSide *sd, const PetscScala
    face it overshoots least, if by at most PAIR_EDGE_TOL in the face's parameters (a twentieth of
    the face's width), on that face's extension: a node at the edge of a surface, which the bodies'
    equal lateral strains keep there to round-off, would otherwise enter and leave contact from one
-   iterate to the next. -1 if none. */
+   iterate to the next. A face the node lies behind by more than half the face's larger diagonal
+   is not a candidate (the node is at the body's other side). -1 if none. */
 #define PAIR_EDGE_TOL 0.1
 static PetscInt PairNode(const PairSide *sd, PetscInt i, const double y[3], NTSProjection *best)
 {
@@ -538,6 +550,14 @@ static PetscInt PairNode(const PairSide *sd, PetscInt i, const double y[3], NTSP
     NTSProjection  pr;
     double         d = 0, o;
     if (NTSProject(4, y, (const double(*)[3])x, xi0, 1e-10, 0, &pr)) continue;
+    { /* a node deeper behind the face than half its larger diagonal is on the body's other side */
+      double d1 = 0, d2 = 0;
+      for (int k = 0; k < 3; k++) {
+        d1 += (x[6 + k] - x[k]) * (x[6 + k] - x[k]);
+        d2 += (x[9 + k] - x[3 + k]) * (x[9 + k] - x[3 + k]);
+      }
+      if (pr.g < -0.5 * PetscSqrtReal(PetscMax(d1, d2))) continue;
+    }
     if (!pr.inside) {
       o = PetscMax(PetscAbsReal(pr.xi[0]), PetscAbsReal(pr.xi[1])) - 1;
       if (o <= PAIR_EDGE_TOL && (o < bo || (o == bo && sd->fcid[12 * c] < sd->fcid[12 * oc]))) {
@@ -836,5 +856,72 @@ PetscErrorCode ContactPairsChanges(ContactPairs p, PetscInt *nchange)
     for (PetscInt i = 0; i < sd->ns; i++) *nchange += (sd->active_prev[i] != (sd->st_t[i].status != CONTACT_OPEN));
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, nchange, 1, MPIU_INT, MPI_SUM, p->comm));
+  PetscFunctionReturn(0);
+}
+
+/* checkpoint rows: per pass of a pair PAIR_CKPT doubles per owned vertex (zero where the vertex is
+   not the pass's slave node): 1, status, face, xi (2), tT (2), t1 (3), has_frame, y (3), gap,
+   tN, f (3), fT (3), slip */
+#define PAIR_CKPT 23
+
+PetscInt ContactPairsCheckpointWidth(ContactPairs p) { return p ? PAIR_CKPT * p->nside : 0; }
+
+PetscErrorCode ContactPairsCheckpointPack(ContactPairs p, PetscReal *rows)
+{
+  const PetscInt w = ContactPairsCheckpointWidth(p);
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(rows, w * p->mesh->nvo));
+  for (PetscInt s = 0; s < p->nside; s++) {
+    const PairSide *sd = &p->side[s];
+    for (PetscInt i = 0; i < sd->ns; i++) {
+      const PairState *t = &sd->st_c[i];
+      const PetscReal  v[PAIR_CKPT] = {1, (PetscReal)t->status, (PetscReal)t->face, t->xi[0], t->xi[1], t->tT[0], t->tT[1], t->t1[0], t->t1[1], t->t1[2], (PetscReal)t->has_frame, t->y[0], t->y[1], t->y[2], t->gap, t->tN, t->f[0], t->f[1], t->f[2], t->fT[0], t->fT[1], t->fT[2], t->slip};
+      PetscCall(PetscArraycpy(rows + w * p->mesh->vrow[sd->sv[i]] + PAIR_CKPT * s, v, PAIR_CKPT));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactPairsCheckpointUnpack(ContactPairs p, const PetscReal *rows, const PetscScalar *uc, const char *path)
+{
+  const PetscInt w   = ContactPairsCheckpointWidth(p);
+  PetscInt       bad = PETSC_MAX_INT;
+
+  PetscFunctionBeginUser;
+  for (PetscInt s = 0; s < p->nside; s++) {
+    PairSide *sd = &p->side[s];
+    for (PetscInt i = 0; i < sd->ns; i++) {
+      const PetscReal *d = rows + w * p->mesh->vrow[sd->sv[i]] + PAIR_CKPT * s;
+      PairState       *t = &sd->st_c[i];
+      if (d[0] != 1) {
+        bad = PetscMin(bad, p->mesh->node_id[sd->sv[i]]);
+        continue;
+      }
+      t->status    = (PetscInt)d[1];
+      t->face      = (PetscInt)d[2];
+      t->xi[0]     = d[3];
+      t->xi[1]     = d[4];
+      t->tT[0]     = d[5];
+      t->tT[1]     = d[6];
+      t->has_frame = d[10] != 0 ? PETSC_TRUE : PETSC_FALSE;
+      for (int k = 0; k < 3; k++) {
+        t->t1[k] = d[7 + k];
+        t->y[k]  = d[11 + k];
+        t->f[k]  = d[16 + k];
+        t->fT[k] = d[19 + k];
+      }
+      t->gap  = d[14];
+      t->tN   = d[15];
+      t->slip = d[22];
+    }
+    PetscCall(PetscArraycpy(sd->st_t, sd->st_c, sd->ns));
+    /* the master faces' committed positions: the committed displacements */
+    for (PetscInt f = 0; f < sd->nfo; f++) FaceCorners(p->mesh, sd->fov + 4 * f, uc, sd->fox0 + 12 * f);
+    PetscCall(PetscArraycpy(sd->fox, sd->fox0, 12 * sd->nfo));
+    PetscCall(PetscSFDestroy(&sd->sf)); /* the candidates are found again at the next step */
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, p->comm));
+  PetscCheck(bad == PETSC_MAX_INT, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: node id %" PetscInt_FMT " is a slave node of a contact pair here but not in the checkpoint", path, bad);
   PetscFunctionReturn(0);
 }

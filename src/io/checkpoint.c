@@ -6,6 +6,7 @@
    node (frame of eqs 28-30 included), the step counter, load level and increments, and a format
    version. It is written to checkpoint.h5.tmp and renamed: a run killed at any moment leaves the
    previous checkpoint whole. */
+#include "contact_pair.h"
 #include <stdio.h>
 #include <string.h>
 #include <hdf5.h>
@@ -249,6 +250,27 @@ static PetscErrorCode Transfer(Problem *problem, hid_t file, PetscBool write, Ch
     if (!write) PetscCall(ContactCheckpointUnpack(problem->contact, cst, ci->lambda, path));
   }
   PetscCall(PetscFree2(own, cst));
+  /* contact pairs between bodies: their slave nodes' committed states per vertex */
+  if (ContactNumPairs(problem->contact) || !write) {
+    ContactPairs   pr  = ContactGetPairs(problem->contact);
+    const PetscInt npw = ContactPairsCheckpointWidth(pr);
+    htri_t         has = write ? 1 : H5Lexists(file, "pair_state", H5P_DEFAULT);
+    PetscCheck((has > 0) == (npw > 0), pb->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint %s contact pairs, this case %s (not the same case)", path, has > 0 ? "has" : "has no", npw > 0 ? "has" : "has none");
+    if (npw) {
+      PetscReal *rows;
+      PetscCall(PetscMalloc1(npw * pb->nvo + 1, &rows));
+      if (write) PetscCall(ContactPairsCheckpointPack(pr, rows));
+      PetscCall(OwnedRows(file, "pair_state", write, (IORows *)&pb->rv, npw, rows, path));
+      if (!write) {
+        PetscScalar *u;
+        PetscCall(ProblemLocalWithBC(problem, problem->Uc, ci->lambda));
+        PetscCall(VecGetArray(problem->Uloc, &u));
+        PetscCall(ContactPairsCheckpointUnpack(pr, rows, u, path));
+        PetscCall(VecRestoreArray(problem->Uloc, &u));
+      }
+      PetscCall(PetscFree(rows));
+    }
+  }
   /* force-driven tools: their unknowns in the last two converged steps and the tools' committed
      state (drive, held offsets, displacement, path), replicated: written by rank 0, read by all */
   if (problem->ntu || !write) {

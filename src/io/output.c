@@ -782,7 +782,14 @@ static herr_t OutputScanStep(hid_t grp, const char *name, const H5L_info_t *info
   if (H5Gget_info(g, &gi) < 0 || PetscCalloc1(gi.nlinks + 1, &rec->field)) return -1;
   for (hsize_t k = 0; k < gi.nlinks; k++) {
     char    fname[256], center[16] = "";
-    ssize_t len = H5Lget_name_by_idx(g, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, fname, sizeof(fname), H5P_DEFAULT);
+    ssize_t      len;
+    H5E_auto2_t  efunc;
+    void        *edata;
+    /* the order of creation where the file tracks it, else by name: the first try is silent */
+    H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    len = H5Lget_name_by_idx(g, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, fname, sizeof(fname), H5P_DEFAULT);
+    H5Eset_auto2(H5E_DEFAULT, efunc, edata);
     if (len < 0) len = H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, fname, sizeof(fname), H5P_DEFAULT);
     if (len < 0) return -1;
     d  = H5Dopen2(g, fname, H5P_DEFAULT);
