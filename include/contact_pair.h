@@ -60,6 +60,12 @@ PetscErrorCode ContactPairsGetResult(ContactPairs p, PetscInt k, ContactPairResu
 /* nodes that entered or left contact since ContactPairsRecordActive (collective count) */
 PetscErrorCode ContactPairsRecordActive(ContactPairs p);
 PetscErrorCode ContactPairsChanges(ContactPairs p, PetscInt *nchange);
+/* augmented Lagrangian (-pair_<p>_augmented): whether some pair has it; one Uzawa update of their
+   multipliers after a converged Newton solve, converged when every augmented pair's penetration
+   and stick slip are below its tolerance (collective); the largest tolerance, for messages */
+PetscBool      ContactPairsAugmented(ContactPairs p);
+PetscErrorCode ContactPairsAugment(ContactPairs p, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda);
+PetscErrorCode ContactPairsAugmentTolerance(ContactPairs p, PetscReal *tol);
 /* checkpoint: the committed states of the slave nodes as rows of the owned vertices (width
    ContactPairsCheckpointWidth; zero rows elsewhere) and back; the unpack takes the committed
    local displacement uc (with boundary values) for the master faces' committed positions */

@@ -1697,7 +1697,7 @@ PetscErrorCode ContactCommit(Contact contact, PetscReal lambda)
   PetscFunctionReturn(0);
 }
 
-PetscBool ContactAugmented(Contact contact) { return (contact->aug && contact->ntools) ? PETSC_TRUE : PETSC_FALSE; }
+PetscBool ContactAugmented(Contact contact) { return ((contact->aug && contact->ntools) || ContactPairsAugmented(contact->pairs)) ? PETSC_TRUE : PETSC_FALSE; }
 PetscInt  ContactAugmentedMax(Contact contact) { return contact->aug_max; }
 
 /* One Uzawa update from the trial state of the last evaluation (the converged Newton solution at
@@ -1705,7 +1705,7 @@ PetscInt  ContactAugmentedMax(Contact contact) { return contact->aug_max; }
    predictor lT + K_T dg_T (= t_T); converged when the largest penetration of a pressed node and the
    largest stick slip of the step (|change of lT|/K_T at a sticking node) are below the tolerance
    and no multiplier changed by more than -contact_augmented_multiplier_tol times the largest. */
-PetscErrorCode ContactAugment(Contact contact, PetscBool inexact, PetscBool *converged, PetscBool *held, PetscReal *maxpen, PetscReal *dlambda)
+static PetscErrorCode ToolsAugment(Contact contact, PetscBool inexact, PetscBool *converged, PetscBool *held, PetscReal *maxpen, PetscReal *dlambda)
 {
   PetscReal loc[6] = {0, 0, 0, 0, 0, 0}, gl[6]; /* penetration, stick slip, change, largest multiplier, normal change, tangential change */
   PetscReal cnt[3] = {0, 0, 0}, gcnt[3];         /* nodes pressed, sticking, slipping (monitor) */
@@ -1807,13 +1807,34 @@ PetscErrorCode ContactAugment(Contact contact, PetscBool inexact, PetscBool *con
   PetscFunctionReturn(0);
 }
 
+/* the tools' update (with -contact_augmented) and the augmented contact pairs' (contact_pair.h):
+   converged when both are; the largest penetration and multiplier change of the two */
+PetscErrorCode ContactAugment(Contact contact, PetscBool inexact, PetscBool *converged, PetscBool *held, PetscReal *maxpen, PetscReal *dlambda)
+{
+  PetscBool pconv = PETSC_TRUE;
+  PetscReal ppen = 0, pdl = 0;
+
+  PetscFunctionBeginUser;
+  *converged = PETSC_TRUE;
+  *held      = PETSC_FALSE;
+  *maxpen = *dlambda = 0;
+  if (contact->aug && contact->ntools) PetscCall(ToolsAugment(contact, inexact, converged, held, maxpen, dlambda));
+  if (ContactPairsAugmented(contact->pairs)) {
+    PetscCall(ContactPairsAugment(contact->pairs, &pconv, &ppen, &pdl));
+    *converged = (*converged && pconv) ? PETSC_TRUE : PETSC_FALSE;
+    *maxpen    = PetscMax(*maxpen, ppen);
+    *dlambda   = PetscMax(*dlambda, pdl);
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Start of a step's augmentation (after the frame seeds from the committed state, which reset the
    multipliers to the committed ones and the penalties' factor to 1): the factor committed with the
    last step (-contact_augmented_growth_keep), and the relative residual of the inexact solves. */
 PetscErrorCode ContactAugmentStart(Contact contact, PetscReal *inexact)
 {
   PetscFunctionBeginUser;
-  *inexact = contact->aug ? contact->aug_inexact : 0;
+  *inexact = (contact->aug && contact->ntools) ? contact->aug_inexact : 0; /* (the pairs' solves are exact) */
   if (contact->aug) contact->kscale = contact->aug_keep ? contact->kscale_c : 1;
   PetscFunctionReturn(0);
 }
@@ -1832,7 +1853,7 @@ PetscErrorCode ContactAugmentSoften(Contact contact, PetscBool *softened, PetscR
   PetscFunctionBeginUser;
   *softened = PETSC_FALSE;
   *factor   = contact->kscale_c;
-  if (!contact->aug || !contact->aug_soften || !contact->aug_keep || !(contact->aug_grow > 1)) PetscFunctionReturn(0);
+  if (!contact->aug || !contact->ntools || !contact->aug_soften || !contact->aug_keep || !(contact->aug_grow > 1)) PetscFunctionReturn(0);
   if (contact->kscale_c / contact->aug_grow < (1 - 1e-12) / contact->aug_grow_max) PetscFunctionReturn(0);
   contact->kscale_c /= contact->aug_grow;
   *softened = PETSC_TRUE;
@@ -1843,8 +1864,11 @@ PetscErrorCode ContactAugmentSoften(Contact contact, PetscBool *softened, PetscR
 PetscErrorCode ContactAugmentTolerances(Contact contact, PetscReal *tol, PetscReal *mtol)
 {
   PetscFunctionBeginUser;
-  *tol  = contact->tol;
+  PetscReal pt;
+  *tol  = (contact->aug && contact->ntools) ? contact->tol : 0;
   *mtol = contact->aug_mtol;
+  PetscCall(ContactPairsAugmentTolerance(contact->pairs, &pt));
+  *tol = PetscMax(*tol, pt);
   PetscFunctionReturn(0);
 }
 

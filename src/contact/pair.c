@@ -35,6 +35,9 @@ typedef struct {
   char      name[ATRITO_NAME_LEN], slave[ATRITO_NAME_LEN], master[ATRITO_NAME_LEN];
   PetscReal mu, kn, kt, kfactor, kratio, search;
   PetscBool kauto, ktauto, two_pass;
+  PetscBool aug;            /* augmented Lagrangian (Uzawa updates between Newton solves)          */
+  PetscReal aug_tol, aug_mtol; /* penetration and stick slip accepted (< 0: relative, times the slave
+                               element size); the multipliers' change, relative to the largest    */
 } PairSpec;
 
 typedef struct {
@@ -71,6 +74,15 @@ typedef struct {
   PetscBool *has_seed;
   PetscInt  *coff, *cand;            /* per slave node its candidates (CSR into the leaves)    */
   PetscInt  *active_prev;
+  PetscReal *lam;                    /* 3 ns: the multipliers of the current solve (lN, lT1, lT2):
+                                        lN 0 without the augmentation; lT the committed tangential
+                                        pressure at the step's start, Uzawa's updates after      */
+  PetscReal  hmin;                   /* smallest slave element size normal to its faces (all ranks) */
+  PetscReal  tol;                    /* the augmentation's tolerance (a length)                  */
+  PetscReal  kscale;                 /* the penalties' factor: grown by the augmentation where an
+                                        update removes too little of the penetration; kept for the
+                                        next steps                                                */
+  PetscReal  pen_prev;               /* the penetration before the last update (< 0: none yet)  */
 } PairSide;
 
 struct _p_ContactPairs {
@@ -127,7 +139,7 @@ PetscErrorCode ContactPairsSetFromOptions(ContactPairs p)
   for (PetscInt k = 0; k < p->np; k++) {
     PairSpec *s = &p->spec[k];
     char      prefix[ATRITO_NAME_LEN + 8], buf[64], opt[ATRITO_NAME_LEN + 48];
-    PetscBool hs, hm;
+    PetscBool hs, hm, ht;
     PetscCall(PetscStrncpy(s->name, names[k], sizeof(s->name)));
     PetscCall(PetscFree(names[k]));
     PetscCheck(s->name[0], comm, PETSC_ERR_USER_INPUT, "-pair_names: an empty name");
@@ -158,6 +170,15 @@ PetscErrorCode ContactPairsSetFromOptions(ContactPairs p)
     PetscCall(PetscOptionsReal("-penalty_factor", "With the automatic normal penalty: K_N = factor * E * A / h", "doc/contact.md", s->kfactor, &s->kfactor, NULL));
     PetscCall(PetscOptionsReal("-penalty_ratio", "With the automatic tangential penalty: K_T = ratio * K_N", "doc/contact.md", s->kratio, &s->kratio, NULL));
     PetscCall(PetscOptionsBool("-two_pass", "Symmetric treatment: also the master's nodes as slaves against the slave set's faces, each pass with half the penalty", "doc/contact.md", s->two_pass, &s->two_pass, NULL));
+    s->aug      = s->two_pass;
+    s->aug_tol  = -1e-3;
+    s->aug_mtol = 0.2;
+    PetscCall(PetscOptionsBool("-augmented", "Augmented Lagrangian: Uzawa updates of the slave nodes' multipliers between Newton solves until the penetration and the stick slip are below -pair_<p>_augmented_tol (default with -pair_<p>_two_pass, whose constraints must hold exactly)", "doc/contact.md", s->aug, &s->aug, NULL));
+    PetscCall(PetscOptionsReal("-augmented_tol", "Augmented Lagrangian: the largest penetration and stick slip per step accepted, a length (default 1e-3 times the smallest slave element size)", "doc/contact.md", PetscAbsReal(s->aug_tol), &s->aug_tol, &ht));
+    if (!ht) s->aug_tol = -1e-3; /* (relative) */
+    PetscCheck(!ht || (s->aug_tol > 0 && PetscIsNormalReal(s->aug_tol)), comm, PETSC_ERR_USER_INPUT, "-pair_%s_augmented_tol %g must be positive", s->name, (double)s->aug_tol);
+    PetscCall(PetscOptionsReal("-augmented_multiplier_tol", "Augmented Lagrangian: the largest change of a multiplier accepted, relative to the largest multiplier", "doc/contact.md", s->aug_mtol, &s->aug_mtol, NULL));
+    PetscCheck(s->aug_mtol > 0 && PetscIsNormalReal(s->aug_mtol), comm, PETSC_ERR_USER_INPUT, "-pair_%s_augmented_multiplier_tol %g must be positive", s->name, (double)s->aug_mtol);
     PetscCall(PetscOptionsReal("-search_distance", "Candidate faces of a slave node: those whose box lies within this distance of it at the step's start (default: twice the largest master face's diagonal)", "doc/contact.md", s->search, &s->search, NULL));
     PetscOptionsEnd();
     PetscCheck(hs && s->slave[0], comm, PETSC_ERR_USER_INPUT, "-pair_%s_slave: the pair needs a node set of slave nodes", s->name);
@@ -200,11 +221,12 @@ static void FaceCorners(const Mesh *m, const PetscInt *fv, const PetscScalar *u,
     for (int k = 0; k < 3; k++) x[3 * a + k] = m->X[3 * fv[a] + k] + (u ? PetscRealPart(u[m->vloff[fv[a]] + k]) : 0);
 }
 
-/* The automatic penalty of the slave nodes of side sd: K_N = factor E sum_f a_i(f) / h_f over the
+/* The slave faces' smallest element size hmin (all ranks) and, with the automatic penalty, the
+   penalty of the slave nodes of side sd: K_N = factor E sum_f a_i(f) / h_f over the
    boundary faces f of the slave set at node i (a_i its share of the face's area, h_f the extent of
    the face's cell normal to it, in the reference configuration); the faces' shares summed over the
    ranks through the unconstrained section */
-static PetscErrorCode AutoPenalty(ContactPairs p, PairSide *sd, const PairSpec *s)
+static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s)
 {
   const Mesh  *m = p->mesh;
   PetscInt     nf, *fv, *fc;
@@ -216,6 +238,7 @@ static PetscErrorCode AutoPenalty(ContactPairs p, PairSide *sd, const PairSpec *
 
   PetscFunctionBeginUser;
   PetscCall(MeshGetBoundaryFaces(m, sd->sset, &nf, &fv, &fc));
+  sd->hmin = PETSC_MAX_REAL;
   PetscCall(DMGetLocalSection(m->dmr, &ls));
   PetscCall(DMCreateLocalVector(m->dmr, &kl));
   PetscCall(DMCreateGlobalVector(m->dmr, &kg));
@@ -240,7 +263,8 @@ static PetscErrorCode AutoPenalty(ContactPairs p, PairSide *sd, const PairSpec *
     for (int d = 0; d < 3; d++) A += nrm[d] * nrm[d];
     A = PetscSqrtReal(A);
     for (int d = 0; d < 3; d++) h += (c0[d] - c1[d]) * nrm[d] / A;
-    h = PetscAbsReal(h);
+    h        = PetscAbsReal(h);
+    sd->hmin = PetscMin(sd->hmin, h);
     for (int j = 0; j < 4; j++) {
       PetscInt off;
       PetscCall(PetscSectionGetOffset(ls, m->vstart + cv[hexface[k][j]], &off));
@@ -252,11 +276,12 @@ static PetscErrorCode AutoPenalty(ContactPairs p, PairSide *sd, const PairSpec *
   PetscCall(DMLocalToGlobal(m->dmr, kl, ADD_VALUES, kg));
   PetscCall(DMGlobalToLocal(m->dmr, kg, INSERT_VALUES, kl));
   PetscCall(VecGetArray(kl, &a));
-  for (PetscInt i = 0; i < sd->ns; i++) {
+  for (PetscInt i = 0; i < sd->ns && s->kauto; i++) {
     PetscInt off;
     PetscCall(PetscSectionGetOffset(ls, m->vstart + sd->sv[i], &off));
     sd->kn[i] = sd->weight * s->kfactor * p->E * PetscRealPart(a[off]);
   }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sd->hmin, 1, MPIU_REAL, MPIU_MIN, p->comm));
   PetscCall(VecRestoreArray(kl, &a));
   PetscCall(VecDestroy(&kl));
   PetscCall(VecDestroy(&kg));
@@ -335,9 +360,12 @@ static PetscErrorCode SideSetUp(ContactPairs p, PairSide *sd)
       sd->st_t[i]     = sd->st_c[i];
     }
   PetscCall(PetscFree(mark));
-  if (s->kauto) PetscCall(AutoPenalty(p, sd, s));
-  else
+  if (!s->kauto)
     for (PetscInt i = 0; i < sd->ns; i++) sd->kn[i] = sd->weight * s->kn;
+  PetscCall(SlaveFaces(p, sd, s));
+  sd->tol    = s->aug_tol > 0 ? s->aug_tol : -s->aug_tol * sd->hmin;
+  sd->kscale = 1;
+  PetscCall(PetscCalloc1(3 * sd->ns + 1, &sd->lam));
   for (PetscInt i = 0; i < sd->ns; i++) sd->kt[i] = s->ktauto ? s->kratio * sd->kn[i] : sd->weight * s->kt;
   {
     PetscReal kmin = PETSC_MAX_REAL, kmax = 0;
@@ -348,7 +376,9 @@ static PetscErrorCode SideSetUp(ContactPairs p, PairSide *sd)
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmin, 1, MPIU_REAL, MPIU_MIN, p->comm));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmax, 1, MPIU_REAL, MPIU_MAX, p->comm));
     PetscCheck(kmin > 0, p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_slave %s: a slave node lies on no boundary face of its set, so it has no automatic penalty (the set must be a surface of the body)", s->name, sd->sset);
-    PetscCall(PetscPrintf(p->comm, "contact pair %s%s: %" PetscInt_FMT " slave nodes (set '%s') on %" PetscInt_FMT " master faces (set '%s'), K_N per node %g to %g%s, mu %g, search distance %g\n", s->name, s->two_pass ? (sd->weight < 1 && !strcmp(sd->sset, s->master) ? " (second pass)" : " (first pass)") : "", g[1], sd->sset, g[0], sd->mset, (double)kmin, (double)kmax, s->kauto ? " (automatic)" : "", (double)s->mu, (double)sd->search));
+    PetscCall(PetscPrintf(p->comm, "contact pair %s%s: %" PetscInt_FMT " slave nodes (set '%s') on %" PetscInt_FMT " master faces (set '%s'), K_N per node %g to %g%s, mu %g, search distance %g", s->name, s->two_pass ? (sd->weight < 1 && !strcmp(sd->sset, s->master) ? " (second pass)" : " (first pass)") : "", g[1], sd->sset, g[0], sd->mset, (double)kmin, (double)kmax, s->kauto ? " (automatic)" : "", (double)s->mu, (double)sd->search));
+    if (s->aug) PetscCall(PetscPrintf(p->comm, ", augmented Lagrangian to %g", (double)sd->tol));
+    PetscCall(PetscPrintf(p->comm, "\n"));
   }
   PetscFunctionReturn(0);
 }
@@ -385,6 +415,7 @@ static PetscErrorCode SideDestroy(PairSide *sd)
   PetscCall(PetscFree4(sd->st_c, sd->st_t, sd->seed, sd->seedn));
   PetscCall(PetscFree3(sd->has_seed, sd->coff, sd->active_prev));
   PetscCall(PetscFree(sd->cand));
+  PetscCall(PetscFree(sd->lam));
   PetscFunctionReturn(0);
 }
 
@@ -588,6 +619,7 @@ PetscErrorCode ContactPairsSeed(ContactPairs p, const PetscScalar *u, PetscBool 
   PetscCall(PetscLogEventBegin(p->ev_search, 0, 0, 0, 0));
   for (PetscInt s = 0; s < p->nside; s++) {
     PairSide *sd = &p->side[s];
+    if (from_committed) sd->pen_prev = -1; /* (the augmentation starts) */
     if (from_committed) PetscCall(SideCandidates(p, sd, u));
     else PetscCall(SideRefresh(p, sd, u));
     for (PetscInt i = 0; i < sd->ns; i++) {
@@ -596,7 +628,13 @@ PetscErrorCode ContactPairsSeed(ContactPairs p, const PetscScalar *u, PetscBool 
       PetscInt      c;
       if (from_committed) {
         const PairState *cc = &sd->st_c[i];
-        sd->has_seed[i]     = (cc->has_frame && cc->status != CONTACT_OPEN) ? PETSC_TRUE : PETSC_FALSE;
+        const PetscBool  in = cc->status != CONTACT_OPEN ? PETSC_TRUE : PETSC_FALSE;
+        /* the multipliers the step starts from: the committed forces (the normal one with the
+           augmentation only) */
+        sd->lam[3 * i]      = (in && p->spec[sd->spec].aug) ? cc->tN : 0;
+        sd->lam[3 * i + 1]  = in ? cc->tT[0] : 0;
+        sd->lam[3 * i + 2]  = in ? cc->tT[1] : 0;
+        sd->has_seed[i]     = (cc->has_frame && in) ? PETSC_TRUE : PETSC_FALSE;
         for (int k = 0; k < 3; k++) {
           sd->seed[3 * i + k]  = cc->t1[k];
           sd->seedn[3 * i + k] = 0;
@@ -605,7 +643,7 @@ PetscErrorCode ContactPairsSeed(ContactPairs p, const PetscScalar *u, PetscBool 
       }
       SlavePosition(p->mesh, sd->sv[i], u, y);
       c = PairNode(sd, i, y, &pr);
-      if (c < 0 || pr.g > 0) { /* out of contact: the frame is forgotten */
+      if (c < 0 || (pr.g > 0 && !(sd->lam[3 * i] - sd->kscale * sd->kn[i] * pr.g > 0))) { /* out of contact: the frame is forgotten */
         sd->has_seed[i] = PETSC_FALSE;
         continue;
       }
@@ -635,7 +673,7 @@ static PetscInt NodeEval(ContactPairs p, PairSide *sd, PetscInt i, const double 
   PairState       *st = &sd->st_t[i];
   NTSProjection    pr;
   PetscInt         c;
-  ContactLaw       law = {sd->kn[i], sd->kt[i], s->mu, 0, 0};
+  ContactLaw       law = {sd->kscale * sd->kn[i], sd->kscale * sd->kt[i], s->mu, 0, 0};
   double           tTn[2] = {0, 0}, ds[3], dds[45], K0[9], K1[9], R1[3], t1b[3], tNb, tTb[2];
   static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
 
@@ -659,15 +697,13 @@ static PetscInt NodeEval(ContactPairs p, PairSide *sd, PetscInt i, const double 
   st->xi[0] = pr.xi[0];
   st->xi[1] = pr.xi[1];
   st->gap   = pr.g;
-  if (pr.g > 0) return c;
+  if (pr.g > 0 && !(sd->lam[3 * i] - law.KN * pr.g > 0)) return c; /* open (held by no multiplier) */
   if (Kx && NTSProject(4, y, (const double(*)[3])(sd->fcx + 12 * c), pr.xi, 1e-10, 1, &pr)) {
     *status_err = 1;
     return -1;
   }
-  if (cc->status != CONTACT_OPEN) {
-    tTn[0] = cc->tT[0];
-    tTn[1] = cc->tT[1];
-  }
+  tTn[0] = sd->lam[3 * i + 1];
+  tTn[1] = sd->lam[3 * i + 2];
   {
     const double *seed = sd->seed + 3 * i;
     double        chord[3];
@@ -676,8 +712,8 @@ static PetscInt NodeEval(ContactPairs p, PairSide *sd, PetscInt i, const double 
       seed = chord;
     }
     NTSSlip(&pr, y, cc->y, (const double(*)[3])(sd->fcx + 12 * c), (const double(*)[3])(sd->fcx0 + 12 * c), ds, Kx ? dds : NULL);
-    st->status = ContactNodeEval(&law, pr.g, pr.n, NULL, seed, tTn, ds, Rs, Kx ? K0 : NULL, st->t1, &st->tN, st->tT);
-    if (Kx) (void)ContactNodeEval(&law, pr.g, pr.n, I3, seed, tTn, ds, R1, K1, t1b, &tNb, tTb);
+    st->status = ContactNodeEvalAug(&law, sd->lam[3 * i], pr.g, pr.n, NULL, seed, tTn, ds, Rs, Kx ? K0 : NULL, st->t1, &st->tN, st->tT);
+    if (Kx) (void)ContactNodeEvalAug(&law, sd->lam[3 * i], pr.g, pr.n, I3, seed, tTn, ds, R1, K1, t1b, &tNb, tTb);
   }
   for (int a = 0; a < 4; a++) N[a] = pr.N[a];
   st->has_frame = PETSC_TRUE;
@@ -923,5 +959,86 @@ PetscErrorCode ContactPairsCheckpointUnpack(ContactPairs p, const PetscReal *row
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, p->comm));
   PetscCheck(bad == PETSC_MAX_INT, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: node id %" PetscInt_FMT " is a slave node of a contact pair here but not in the checkpoint", path, bad);
+  PetscFunctionReturn(0);
+}
+
+PetscBool ContactPairsAugmented(ContactPairs p)
+{
+  if (!p) return PETSC_FALSE;
+  for (PetscInt k = 0; k < p->np; k++)
+    if (p->spec[k].aug) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* One Uzawa update of the augmented pairs' multipliers from the trial state of the last evaluation
+   (the converged Newton solution at the current multipliers): lN <- <lN - K_N g> (= t_N), lT <- the
+   return of lT + K_T dg_T (= t_T), then lN >= 0, |lT| <= mu lN. Converged when, on every augmented
+   pair, the largest penetration of a pressed node and the largest stick slip of the step (|change
+   of lT| / K_T at a sticking node) are below the pair's tolerance and no multiplier changed by more
+   than its multiplier tolerance times the largest. Collective. */
+PetscErrorCode ContactPairsAugment(ContactPairs p, PetscBool *converged, PetscReal *maxpen, PetscReal *dlambda)
+{
+  PetscReal *loc;
+  const PetscInt nv = 4 * p->nside;
+
+  PetscFunctionBeginUser;
+  *converged = PETSC_TRUE;
+  *maxpen = *dlambda = 0;
+  PetscCall(PetscCalloc1(nv + 1, &loc)); /* per side: penetration, stick slip, change, largest multiplier */
+  for (PetscInt s = 0; s < p->nside; s++) {
+    PairSide       *sd = &p->side[s];
+    const PairSpec *sp = &p->spec[sd->spec];
+    PetscReal      *v  = loc + 4 * s;
+    if (!sp->aug) continue;
+    for (PetscInt i = 0; i < sd->ns; i++) {
+      const PairState *st = &sd->st_t[i];
+      const PetscBool  in = st->status != CONTACT_OPEN ? PETSC_TRUE : PETSC_FALSE;
+      PetscReal       *l  = sd->lam + 3 * i, r[3], dT;
+      r[0] = (in ? st->tN : 0) - l[0];
+      r[1] = (in ? st->tT[0] : 0) - l[1];
+      r[2] = (in ? st->tT[1] : 0) - l[2];
+      dT   = PetscSqrtReal(r[1] * r[1] + r[2] * r[2]);
+      if (in && st->tN > 0) v[0] = PetscMax(v[0], -st->gap);
+      if (in && st->status == CONTACT_STICK && sp->mu > 0) v[1] = PetscMax(v[1], dT / (sd->kscale * sd->kt[i]));
+      v[2] = PetscMax(v[2], PetscSqrtReal(r[0] * r[0] + dT * dT));
+      v[3] = PetscMax(v[3], PetscSqrtReal(st->tN * st->tN + st->tT[0] * st->tT[0] + st->tT[1] * st->tT[1]) * in);
+      for (int k = 0; k < 3; k++) l[k] += r[k];
+      l[0] = PetscMax(l[0], 0);
+      {
+        const PetscReal nT = PetscSqrtReal(l[1] * l[1] + l[2] * l[2]), cap = sp->mu * l[0];
+        if (nT > cap) {
+          l[1] = nT > 0 ? l[1] * cap / nT : 0;
+          l[2] = nT > 0 ? l[2] * cap / nT : 0;
+        }
+      }
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, (PetscMPIInt)nv, MPIU_REAL, MPIU_MAX, p->comm));
+  for (PetscInt s = 0; s < p->nside; s++) {
+    const PairSide *sd = &p->side[s];
+    const PairSpec *sp = &p->spec[sd->spec];
+    const PetscReal *v = loc + 4 * s;
+    if (!sp->aug) continue;
+    PairSide *sw = &p->side[s];
+    if (!(v[0] <= sd->tol && v[1] <= sd->tol && v[2] <= sp->aug_mtol * v[3])) *converged = PETSC_FALSE;
+    /* Uzawa's rate is the penalty's stiffness against the bodies': an update that did not reduce
+       the penetration by 4 (and left it above the tolerance) makes the pair's penalties 8 times
+       stiffer, up to 1e3 times the automatic ones, for the rest of the step and the next steps (the
+       multipliers carry the force, so the converged state does not depend on the factor) */
+    if (sw->pen_prev >= 0 && v[0] > sd->tol && v[0] > 0.25 * sw->pen_prev && sw->kscale * 8 <= 1e3 * (1 + 1e-12)) sw->kscale *= 8;
+    sw->pen_prev = v[0];
+    *maxpen  = PetscMax(*maxpen, v[0]);
+    *dlambda = PetscMax(*dlambda, v[2]);
+  }
+  PetscCall(PetscFree(loc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactPairsAugmentTolerance(ContactPairs p, PetscReal *tol)
+{
+  PetscFunctionBeginUser;
+  *tol = 0;
+  for (PetscInt s = 0; s < p->nside; s++)
+    if (p->spec[p->side[s].spec].aug) *tol = PetscMax(*tol, p->side[s].tol);
   PetscFunctionReturn(0);
 }
