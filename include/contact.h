@@ -107,6 +107,9 @@ PetscInt       ContactNumTools(Contact c);
 PetscInt       ContactNumPairs(Contact c);
 struct _p_ContactPairs *ContactGetPairs(Contact c);
 PetscErrorCode ContactGetFaceSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN]);
+/* with several bodies (body.h), before ContactSetUp: the Young's modulus of each local cell's
+   material, for the pairs' automatic penalties (copied; without it the body's, ContactSetYoungModulus) */
+PetscErrorCode ContactSetCellModuli(Contact c, PetscInt nc, const PetscReal *Ec);
 /* owned slave nodes on this rank */
 PetscInt       ContactNumSlaves(Contact c);
 

@@ -41,6 +41,8 @@ PetscInt       ContactPairsNum(ContactPairs p);
    automatic penalty */
 PetscErrorCode ContactPairsGetFaceSets(ContactPairs p, PetscInt *n, char (**sets)[ATRITO_NAME_LEN]);
 PetscErrorCode ContactPairsSetYoungModulus(ContactPairs p, PetscReal E);
+/* the modulus of each local cell's material (several bodies; copied), before SetUp */
+PetscErrorCode ContactPairsSetCellModuli(ContactPairs p, PetscInt nc, const PetscReal *Ec);
 PetscErrorCode ContactPairsSetUp(ContactPairs p, const Mesh *m);
 PetscErrorCode ContactPairsDestroy(ContactPairs *p);
 /* collective. from_committed: the step's start (or a retry): the candidate faces of every slave

@@ -1,9 +1,12 @@
 /* Materials: one interface, one registry of types (PETSc manner).
 
    A Material is created on a communicator, gets its type from -material_type (default "j2")
-   and its parameters from the type's own options; what the element kernels call is its
-   MaterialKernel, a table of pure functions on plain arrays (no PETSc objects, no MPI), with
-   the history width per quadrature point chosen by the type at run time.
+   and its parameters from the type's own options (-material_E, ...; under another options
+   prefix set with MaterialSetOptionsPrefix, e.g. "body_die_material_", every one of them is
+   read as -body_die_material_type, -body_die_material_E, ..., so that several materials
+   coexist); what the element kernels call is its MaterialKernel, a table of pure functions on
+   plain arrays (no PETSc objects, no MPI), with the history width per quadrature point chosen
+   by the type at run time.
 
    Types: "j2" (finite-strain J2 plasticity, include/material_j2.h), "hill48" (Hill 48 anisotropic
    plasticity in the same log-strain framework, include/material_hill48.h; doc/materials.md),
@@ -59,7 +62,17 @@ typedef struct {
 /* add a type to the registry (create sets the object's kernel and operations) */
 PetscErrorCode MaterialRegister(const char name[], PetscErrorCode (*create)(Material));
 PetscErrorCode MaterialCreate(MPI_Comm comm, Material *mat);
-/* -material_type (default "j2"), then the type's own options; collective */
+/* The prefix of the material's options, without the leading dash: "material_" after
+   MaterialCreate; NULL restores it. Every option of the material and of its type is read under
+   it (-<prefix>type, -<prefix>E, ...), and the messages and -help group titles name the options
+   with it. It must not be empty, start with '-' or contain white space, and should end with '_';
+   at most 255 characters. Call it before MaterialSetFromOptions (which reads the options anew
+   under the current prefix when called again). */
+PetscErrorCode MaterialSetOptionsPrefix(Material mat, const char prefix[]);
+/* the current prefix (owned by mat) */
+PetscErrorCode MaterialGetOptionsPrefix(Material mat, const char *prefix[]);
+/* -material_type (default "j2"), then the type's own options (under the options prefix, by
+   default "material_"); collective */
 PetscErrorCode MaterialSetFromOptions(Material mat);
 /* valid after MaterialSetFromOptions; owned by mat */
 PetscErrorCode MaterialGetKernel(Material mat, const MaterialKernel **k);

@@ -42,8 +42,8 @@ void   J2KernelInit(const J2Params *mp, MaterialKernel *k);
 /* Shared with the types built on J2's elasticity and hardening (hill48): the defaults of the
    options (Swift aluminium of the benchmark), the options (-material_E, _nu, _hardening, _yield,
    _hardening_modulus, _swift_K, _swift_eps0, _swift_n, _return_rtol, _return_maxit) read and
-   validated inside the caller's PetscOptionsBegin block (prefix "material_"), and the view of
-   the elasticity and hardening. */
+   validated inside the caller's PetscOptionsBegin block (its prefix: "material_", or a body's
+   "body_<b>_material_"), and the view of the elasticity and hardening. */
 void           J2ParamsDefaults(J2Params *mp);
 PetscErrorCode J2ParamsSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, J2Params *mp);
 PetscErrorCode J2ParamsView(const J2Params *mp, PetscViewer v);

@@ -26,7 +26,13 @@ typedef struct {
   Contact     contact;
   Material    material;
   Element     element;
-  const MaterialKernel *mk;
+  const MaterialKernel *mk;  /* the default material's                                     */
+  /* the materials of the bodies (body.h): mats[0] the default, cmat[e] each cell's (NULL: all 0) */
+#define PROBLEM_MAX_MAT 17
+  PetscInt              nmat;
+  Material              mats[PROBLEM_MAX_MAT];
+  const MaterialKernel *mks[PROBLEM_MAX_MAT];
+  PetscInt             *cmat;
   const ElementKernel  *ek;
 
   /* options */
@@ -79,6 +85,9 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb);
 /* registers the preconditioner type "amgsys" (src/solver/amg.c: BoomerAMG with each row told its
    displacement component); ProblemSetFromOptions calls it */
 PetscErrorCode AMGSysRegister(void);
+/* before ProblemSetUp, with several bodies: the n materials (mats[0] the default) and each local
+   cell's (cmat[nc], copied) */
+PetscErrorCode ProblemSetMaterials(Problem *pb, PetscInt n, const Material *mats, const PetscInt *cmat, PetscInt nc);
 /* on the mesh: history, vectors, the Jacobian (preallocated, COO pattern, near-null space) */
 PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact contact, Material mat, Element el);
 PetscErrorCode ProblemDestroy(Problem *pb);

@@ -8,6 +8,7 @@
 #include "material.h"
 #include "element.h"
 #include "problem.h"
+#include "body.h"
 #include "stepper.h"
 #include "results.h"
 #include "options.h"
@@ -77,6 +78,7 @@ static PetscErrorCode Run(PetscBool *stop)
   BCs           bcs;
   Contact       contact;
   Material      material;
+  Bodies        bodies;
   Element       element;
   Problem       pb;
   Stepper       st;
@@ -101,6 +103,7 @@ static PetscErrorCode Run(PetscBool *stop)
   PetscCall(MeshSetFromOptions(comm, &mo));
   PetscCall(MaterialCreate(comm, &material));
   PetscCall(MaterialSetFromOptions(material));
+  PetscCall(BodiesSetFromOptions(comm, &bodies));
   PetscCall(ElementCreate(comm, &element));
   PetscCall(ElementSetFromOptions(element));
   PetscCall(BCSetFromOptions(comm, &bcs));
@@ -139,9 +142,23 @@ static PetscErrorCode Run(PetscBool *stop)
     PetscCall(MemoryPhase(comm, memph, "the mesh and conditions", NULL));
     PetscCall(PetscLogStagePush(stage_setup));
     {
-      PetscReal E;
+      PetscReal E = 0;
       PetscCall(MaterialGetYoungModulus(material, &E));
       PetscCall(ContactSetYoungModulus(contact, E));
+    }
+    if (bodies.n) { /* several bodies: each cell's material, and its modulus for the contact pairs' penalties */
+      PetscInt  *cmat;
+      PetscReal *Ec, Em[BODY_MAX + 1];
+      Material   mats[BODY_MAX + 1];
+      mats[0] = material;
+      for (PetscInt k = 0; k < bodies.n; k++) mats[k + 1] = bodies.mat[k];
+      for (PetscInt k = 0; k <= bodies.n; k++) PetscCall(MaterialGetYoungModulus(mats[k], &Em[k]));
+      PetscCall(PetscMalloc2(mesh.nc + 1, &cmat, mesh.nc + 1, &Ec));
+      PetscCall(BodiesCellMap(&bodies, &mesh, cmat));
+      for (PetscInt c = 0; c < mesh.nc; c++) Ec[c] = Em[cmat[c]];
+      PetscCall(ProblemSetMaterials(&pb, bodies.n + 1, mats, cmat, mesh.nc));
+      PetscCall(ContactSetCellModuli(contact, mesh.nc, Ec));
+      PetscCall(PetscFree2(cmat, Ec));
     }
     PetscCall(ContactSetUp(contact, &mesh));
     PetscCall(MemoryPhase(comm, memph, "the contact setup", NULL));
@@ -165,6 +182,7 @@ static PetscErrorCode Run(PetscBool *stop)
   PetscCall(ContactDestroy(&contact));
   PetscCall(ElementDestroy(&element));
   PetscCall(MaterialDestroy(&material));
+  PetscCall(BodiesDestroy(&bodies));
   PetscFunctionReturn(0);
 }
 

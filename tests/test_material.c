@@ -1,11 +1,14 @@
 /* Unit tests of the 3x3 tensor utilities, the finite-strain J2 material kernel, and the
-   Material object of type j2: its options, their validation, and its kernel table. */
+   Material object of type j2: its options, their validation, and its kernel table; materials
+   under options prefixes of their own (MaterialSetOptionsPrefix, the bodies' materials) side by
+   side with the default one, j2 and UMATs (bin/umat_j2.so, bin/umat_ctest.so). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
 
 #include <petscsys.h>
+#include "material_impl.h" /* MaterialOptionsTitle */
 #include "material_j2.h"
 #include "options.h"
 #include "tensor.h"
@@ -533,6 +536,222 @@ static PetscErrorCode test_object(void)
   PetscFunctionReturn(0);
 }
 
+/* ---------- materials under options prefixes of their own ---------- */
+/* a Material with the options prefix prefix from the options opts; on error (*ierr != 0, message
+   in ErrMsg) *mat is NULL */
+static PetscErrorCode PrefixedFromOptions(const char *prefix, const char *opts, Material *mat, PetscErrorCode *ierr)
+{
+  PetscFunctionBeginUser;
+  ErrMsg[0] = '\0';
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, opts));
+  PetscCall(MaterialCreate(PETSC_COMM_WORLD, mat));
+  PetscCall(MaterialSetOptionsPrefix(*mat, prefix));
+  PetscCall(PetscPushErrorHandler(CaptureHandler, NULL));
+  *ierr = MaterialSetFromOptions(*mat);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscOptionsClear(NULL));
+  if (*ierr) PetscCall(MaterialDestroy(mat));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode test_prefix(void)
+{
+  Material              a = NULL, b = NULL, mat = NULL;
+  const MaterialKernel *ka, *kb;
+  const char           *pa = NULL, *ta = NULL, *tb = NULL;
+  PetscErrorCode        ierr;
+  PetscReal             Ea = 0, Eb = 0;
+
+  PetscFunctionBeginUser;
+  /* the API: default prefix, set, get, NULL restores it, invalid prefixes refused */
+  PetscCall(MaterialCreate(PETSC_COMM_WORLD, &a));
+  PetscCall(MaterialGetOptionsPrefix(a, &pa));
+  TU_CHECK(pa && !strcmp(pa, "material_"), "MaterialCreate: options prefix '%s' (material_)", pa ? pa : "(null)");
+  PetscCall(MaterialSetOptionsPrefix(a, "body_x_material_"));
+  PetscCall(MaterialGetOptionsPrefix(a, &pa));
+  TU_CHECK(!strcmp(pa, "body_x_material_"), "MaterialSetOptionsPrefix / MaterialGetOptionsPrefix: '%s'", pa);
+  PetscCall(MaterialSetOptionsPrefix(a, NULL));
+  PetscCall(MaterialGetOptionsPrefix(a, &pa));
+  TU_CHECK(!strcmp(pa, "material_"), "MaterialSetOptionsPrefix(NULL) restores material_: '%s'", pa);
+  {
+    const char    *badp[3] = {"", "-body_x_material_", "body x_"};
+    PetscErrorCode e[3];
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    for (int i = 0; i < 3; i++) e[i] = MaterialSetOptionsPrefix(a, badp[i]);
+    PetscCall(PetscPopErrorHandler());
+    PetscCall(MaterialGetOptionsPrefix(a, &pa));
+    TU_CHECK(e[0] && e[1] && e[2] && !strcmp(pa, "material_"), "MaterialSetOptionsPrefix refuses an empty prefix (%d), a leading '-' (%d), white space (%d), keeping '%s'", (int)e[0], (int)e[1], (int)e[2], pa);
+  }
+  {
+    char t1[512], t2[512];
+    PetscCall(MaterialOptionsTitle(a, "j2", "what", t1, sizeof t1));
+    PetscCall(MaterialSetOptionsPrefix(a, "body_x_material_"));
+    PetscCall(MaterialOptionsTitle(a, "j2", "what", t2, sizeof t2));
+    TU_CHECK(!strcmp(t1, "Material j2: what") && !strcmp(t2, "Material j2 (-body_x_material_): what"), "-help group titles: '%s' under material_, '%s' under body_x_material_", t1, t2);
+  }
+  PetscCall(MaterialDestroy(&a));
+
+  /* two materials, each reading its own options: the default one and one of body x */
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsSetValue(NULL, "-material_E", "70000"));
+  PetscCall(PetscOptionsSetValue(NULL, "-body_x_material_E", "1234"));
+  PetscCall(PetscOptionsSetValue(NULL, "-body_x_material_nu", "0.25"));
+  PetscCall(PetscOptionsSetValue(NULL, "-body_x_material_hardening", "linear"));
+  PetscCall(PetscOptionsSetValue(NULL, "-body_x_material_yield", "12"));
+  PetscCall(MaterialCreate(PETSC_COMM_WORLD, &a));
+  PetscCall(MaterialCreate(PETSC_COMM_WORLD, &b));
+  PetscCall(MaterialSetOptionsPrefix(b, "body_x_material_"));
+  ErrMsg[0] = '\0';
+  PetscCall(PetscPushErrorHandler(CaptureHandler, NULL));
+  ierr = MaterialSetFromOptions(a);
+  if (!ierr) ierr = MaterialSetFromOptions(b);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscOptionsClear(NULL));
+  TU_CHECK(!ierr, "a default material and one under body_x_material_ set from the same options (status %d) [%s]", (int)ierr, ErrMsg);
+  if (!ierr) {
+    J2Params ea = swift_params(), eb = linear_params(12.0, 0.0);
+    ea.E  = 70000;
+    eb.E  = 1234;
+    eb.nu = 0.25;
+    eb.swK = 589.0, eb.sweps0 = 1e-4, eb.swn = 0.216; /* the Swift defaults stay */
+    J2ParamsSetup(&ea);
+    J2ParamsSetup(&eb);
+    PetscCall(MaterialGetKernel(a, &ka));
+    PetscCall(MaterialGetKernel(b, &kb));
+    PetscCall(MaterialGetYoungModulus(a, &Ea));
+    PetscCall(MaterialGetYoungModulus(b, &Eb));
+    TU_CHECK(same_params((const J2Params *)ka->ctx, &ea) && Ea == 70000, "the default material keeps its own options: -material_E %g, nu %g, Swift (Young's modulus %g)", ((const J2Params *)ka->ctx)->E, ((const J2Params *)ka->ctx)->nu, Ea);
+    TU_CHECK(same_params((const J2Params *)kb->ctx, &eb) && Eb == 1234, "the material under body_x_material_ reads -body_x_material_E %g, _nu %g, _hardening linear, _yield %g (Young's modulus %g)", ((const J2Params *)kb->ctx)->E,
+             ((const J2Params *)kb->ctx)->nu, ((const J2Params *)kb->ctx)->sy0, Eb);
+    {
+      const double F[9] = {1.004, 0.001, 0, 0.002, 0.998, 0, 0, 0, 0.999};
+      double       hn[J2_NHIST], h1[J2_NHIST], h2[J2_NHIST], ta1[9], ta2[9], tb1[9], tb2[9];
+      int          pl1, pl2;
+      J2HistoryInit(hn);
+      ka->update(ka->ctx, F, hn, ta1, NULL, h1, &pl1);
+      kb->update(kb->ctx, F, hn, tb1, NULL, h2, &pl2);
+      J2Update(&ea, F, hn, ta2, NULL, h1, &pl1);
+      J2Update(&eb, F, hn, tb2, NULL, h2, &pl2);
+      TU_CHECK(!memcmp(ta1, ta2, sizeof ta1) && !memcmp(tb1, tb2, sizeof tb1) && fabs(ta1[0] - tb1[0]) > 1, "each kernel evaluates its own parameters (tau_xx %g and %g)", ta1[0], tb1[0]);
+    }
+  }
+  PetscCall(MaterialDestroy(&a));
+  PetscCall(MaterialDestroy(&b));
+
+  /* the type under the prefix: body x hill48, the default material j2 */
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsSetValue(NULL, "-body_x_material_type", "hill48"));
+  PetscCall(PetscOptionsSetValue(NULL, "-body_x_material_hill_r0", "1.6"));
+  PetscCall(MaterialCreate(PETSC_COMM_WORLD, &a));
+  PetscCall(MaterialCreate(PETSC_COMM_WORLD, &b));
+  PetscCall(MaterialSetOptionsPrefix(b, "body_x_material_"));
+  PetscCall(PetscPushErrorHandler(CaptureHandler, NULL));
+  ierr = MaterialSetFromOptions(a);
+  if (!ierr) ierr = MaterialSetFromOptions(b);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscOptionsClear(NULL));
+  if (!ierr) {
+    PetscCall(MaterialGetType(a, &ta));
+    PetscCall(MaterialGetType(b, &tb));
+  }
+  TU_CHECK(!ierr && !strcmp(ta, "j2") && !strcmp(tb, "hill48"), "-body_x_material_type hill48: types %s (default) and %s (body x) [%s]", ta ? ta : "-", tb ? tb : "-", ierr ? ErrMsg : "");
+  PetscCall(MaterialDestroy(&a));
+  PetscCall(MaterialDestroy(&b));
+
+  /* UMATs beside each other and beside j2: the default material the Fortran J2 UMAT, body x the C
+     hypoelastic UMAT (another library, other PROPS and NSTATV), body y the built-in j2; evaluated
+     in turns, each gives what it gives alone */
+  {
+    Material              c = NULL;
+    const MaterialKernel *kc;
+    PetscCall(PetscOptionsClear(NULL));
+    PetscCall(PetscOptionsInsertString(NULL, "-material_type umat -material_umat bin/umat_j2.so -material_umat_props 69004,0.3,589,1e-4,0.216 -material_umat_nstatev 1 -material_umat_statev_ep 1 "
+                                             "-body_x_material_type umat -body_x_material_umat bin/umat_ctest.so -body_x_material_umat_symbol umat_hypo_ -body_x_material_umat_props 1000,0.3 "
+                                             "-body_y_material_type j2"));
+    PetscCall(MaterialCreate(PETSC_COMM_WORLD, &a));
+    PetscCall(MaterialCreate(PETSC_COMM_WORLD, &b));
+    PetscCall(MaterialCreate(PETSC_COMM_WORLD, &c));
+    PetscCall(MaterialSetOptionsPrefix(b, "body_x_material_"));
+    PetscCall(MaterialSetOptionsPrefix(c, "body_y_material_"));
+    ErrMsg[0] = '\0';
+    PetscCall(PetscPushErrorHandler(CaptureHandler, NULL));
+    ierr = MaterialSetFromOptions(a);
+    if (!ierr) ierr = MaterialSetFromOptions(b);
+    if (!ierr) ierr = MaterialSetFromOptions(c);
+    PetscCall(PetscPopErrorHandler());
+    PetscCall(PetscOptionsClear(NULL));
+    TU_CHECK(!ierr, "two UMATs (bin/umat_j2.so as material_, bin/umat_ctest.so umat_hypo_ as body_x_material_) and j2 (body_y_material_) set up (status %d) [%s]", (int)ierr, ErrMsg);
+    if (!ierr) {
+      const double F1[9] = {1.0005, 0, 0, 0, 0.99975, 0, 0, 0, 0.99975}, F2[9] = {1.006, 0, 0, 0, 0.997, 0, 0, 0, 0.997};
+      double       ha0[32], hb0[32], hc0[J2_NHIST], ha1[32], hb1[32], hc1[J2_NHIST], hx[32], ta1[9], tb1[9], tc1[9], ta2[9], tb2[9], tc2[9], tx[9], hooke[9] = {0};
+      int          sa[4], sb[4], sc[4], pl;
+      PetscCall(MaterialGetKernel(a, &ka));
+      PetscCall(MaterialGetKernel(b, &kb));
+      PetscCall(MaterialGetKernel(c, &kc));
+      ka->history_init(ka->ctx, ha0);
+      kb->history_init(kb->ctx, hb0);
+      kc->history_init(kc->ctx, hc0);
+      /* in turns: a, b, c at F1, then again from their new histories at F2 */
+      sa[0] = ka->update(ka->ctx, F1, ha0, ta1, NULL, ha1, &pl);
+      sb[0] = kb->update(kb->ctx, F1, hb0, tb1, NULL, hb1, &pl);
+      sc[0] = kc->update(kc->ctx, F1, hc0, tc1, NULL, hc1, &pl);
+      sa[1] = ka->update(ka->ctx, F2, ha1, ta2, NULL, hx, &pl);
+      sb[1] = kb->update(kb->ctx, F2, hb1, tb2, NULL, hx, &pl);
+      sc[1] = kc->update(kc->ctx, F2, hc1, tc2, NULL, hx, &pl);
+      /* a alone (after b's calls): the same bits */
+      sa[2] = ka->update(ka->ctx, F1, ha0, tx, NULL, hx, &pl);
+      const int same_a = !memcmp(tx, ta1, sizeof tx);
+      sb[2] = kb->update(kb->ctx, F1, hb0, tx, NULL, hx, &pl);
+      const int same_b = !memcmp(tx, tb1, sizeof tx);
+      sa[3] = sb[3] = sc[2] = sc[3] = MAT_OK;
+      /* one step from the virgin state of the hypoelastic UMAT: Hencky, tau = lambda tr(e) 1 + 2 mu e, e = ln V */
+      {
+        const double E = 1000, nu = 0.3, lam = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+        const double e[3] = {log(F1[0]), log(F1[4]), log(F1[8])}, tr = e[0] + e[1] + e[2];
+        for (int i = 0; i < 3; i++) hooke[4 * i] = lam * tr + 2 * mu * e[i];
+      }
+      const double eb = fdiff(tb1, hooke, 9) / fnorm(hooke, 9), ea1 = fdiff(ta1, tc1, 9) / fnorm(tc1, 9), ea2 = fdiff(ta2, tc2, 9) / fnorm(tc2, 9);
+      int          allok = 1;
+      for (int i = 0; i < 4; i++) allok = allok && sa[i] == MAT_OK && sb[i] == MAT_OK && sc[i] == MAT_OK;
+      TU_CHECK(allok && same_a && same_b, "UMATs of two materials in turns: each one's tau is the same, bit for bit, before and after the other's calls");
+      TU_CHECK(allok && eb < 1e-12 && ea1 < 1e-9 && ea2 < 1e-9 && ka->nhist == 22 && kb->nhist == 21,
+               "UMAT beside UMAT beside j2: body x's hypoelastic UMAT (E 1000) = Hencky to %.1e, the default's Fortran J2 UMAT = body y's built-in j2 to %.1e, %.1e (elastic, plastic step); nhist %d, %d", eb, ea1, ea2, ka->nhist, kb->nhist);
+    }
+    PetscCall(MaterialDestroy(&a));
+    PetscCall(MaterialDestroy(&b));
+    PetscCall(MaterialDestroy(&c));
+  }
+
+  /* validation under the prefix: the messages name the prefixed options; the default material
+     reads none of them, the prefixed one none of the default's */
+  {
+    const char *bad[][2] = {
+      {"-body_x_material_nu 0.5",                                             "-body_x_material_nu 0.5 must lie in (-1, 0.5)"                                   },
+      {"-body_x_material_E -1",                                               "-body_x_material_E -1. must be positive"                                          },
+      {"-body_x_material_hardening linear -body_x_material_yield -5",         "-body_x_material_yield -5. must be positive"                                      },
+      {"-body_x_material_return_maxit 0",                                     "-body_x_material_return_maxit 0 must be >= 1"                                     },
+      {"-body_x_material_type nosuch",                                        "-body_x_material_type nosuch: unknown material"                                   },
+      {"-body_x_material_type hill48 -body_x_material_hill_r0 -1",            "-body_x_material_hill_r0 -1. must be positive"                                    },
+      {"-body_x_material_type hill48 -body_x_material_hill_r0 2 -body_x_material_hill_F 1", "-body_x_material_hill_r0/r45/r90 and -body_x_material_hill_F/G/H/L/M/N exclude each other"},
+      {"-body_x_material_type yld91 -body_x_material_yld91_exponent 3",       "-body_x_material_yld91_exponent 3 must be an even integer in [2, 32]"             },
+      {"-body_x_material_type umat",                                          "-body_x_material_type umat needs -body_x_material_umat PATH"                      },
+      {"-body_x_material_type umat -body_x_material_umat bin/no_such_umat.so", "-body_x_material_umat bin/no_such_umat.so: cannot load the library"              },
+    };
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
+      PetscCall(PrefixedFromOptions("body_x_material_", bad[i][0], &mat, &ierr));
+      TU_CHECK(ierr == PETSC_ERR_USER_INPUT && !mat && strstr(ErrMsg, bad[i][1]), "under body_x_material_, %s: refused with '%s' [%s]", bad[i][0], bad[i][1], ErrMsg);
+      PetscCall(MaterialFromOptions(bad[i][0], &mat, &ierr));
+      TU_CHECK(!ierr && mat, "the default material ignores %s (status %d) [%s]", bad[i][0], (int)ierr, ErrMsg);
+      PetscCall(MaterialDestroy(&mat));
+    }
+    PetscCall(PrefixedFromOptions("body_x_material_", "-material_nu 0.5 -material_type nosuch", &mat, &ierr));
+    TU_CHECK(!ierr && mat, "the material under body_x_material_ ignores -material_nu 0.5 -material_type nosuch (status %d) [%s]", (int)ierr, ErrMsg);
+    PetscCall(MaterialDestroy(&mat));
+  }
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
@@ -543,6 +762,7 @@ int main(int argc, char **argv)
   test_tangent();
   test_failures();
   PetscCall(test_object());
+  PetscCall(test_prefix());
   timing();
   PetscCall(PetscFinalize());
   TU_RETURN();

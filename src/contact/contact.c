@@ -702,6 +702,13 @@ PetscErrorCode ContactSetYoungModulus(Contact c, PetscReal E)
 }
 
 PetscInt ContactNumPairs(Contact c) { return ContactPairsNum(c->pairs); }
+
+PetscErrorCode ContactSetCellModuli(Contact c, PetscInt nc, const PetscReal *Ec)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ContactPairsSetCellModuli(c->pairs, nc, Ec));
+  PetscFunctionReturn(0);
+}
 ContactPairs ContactGetPairs(Contact c) { return c->pairs; }
 
 PetscErrorCode ContactGetFaceSets(Contact c, PetscInt *n, char (**sets)[ATRITO_NAME_LEN])

@@ -90,6 +90,7 @@ struct _p_ContactPairs {
   PetscMPIInt rank, size;
   const Mesh *mesh;
   PetscReal   E;
+  PetscReal  *Ecell;         /* per local cell its material's modulus (several bodies), else NULL */
   PetscInt    np;
   PairSpec    spec[PAIR_MAX];
   PetscInt    nside;
@@ -208,6 +209,15 @@ PetscErrorCode ContactPairsGetFaceSets(ContactPairs p, PetscInt *n, char (**sets
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ContactPairsSetCellModuli(ContactPairs p, PetscInt nc, const PetscReal *Ec)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(p->Ecell));
+  PetscCall(PetscMalloc1(nc + 1, &p->Ecell));
+  PetscCall(PetscArraycpy(p->Ecell, Ec, nc));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ContactPairsSetYoungModulus(ContactPairs p, PetscReal E)
 {
   PetscFunctionBeginUser;
@@ -222,9 +232,10 @@ static void FaceCorners(const Mesh *m, const PetscInt *fv, const PetscScalar *u,
 }
 
 /* The slave faces' smallest element size hmin (all ranks) and, with the automatic penalty, the
-   penalty of the slave nodes of side sd: K_N = factor E sum_f a_i(f) / h_f over the
+   penalty of the slave nodes of side sd: K_N = factor sum_f E_f a_i(f) / h_f over the
    boundary faces f of the slave set at node i (a_i its share of the face's area, h_f the extent of
-   the face's cell normal to it, in the reference configuration); the faces' shares summed over the
+   the face's cell normal to it, in the reference configuration; E_f the modulus of its cell's
+   material); the faces' shares summed over the
    ranks through the unconstrained section */
 static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s)
 {
@@ -268,7 +279,7 @@ static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s
     for (int j = 0; j < 4; j++) {
       PetscInt off;
       PetscCall(PetscSectionGetOffset(ls, m->vstart + cv[hexface[k][j]], &off));
-      a[off] += h > 0 ? ar[j] / h : 0;
+      a[off] += h > 0 ? (p->Ecell ? p->Ecell[c] : p->E) * ar[j] / h : 0;
     }
   }
   PetscCall(VecRestoreArray(kl, &a));
@@ -279,7 +290,7 @@ static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s
   for (PetscInt i = 0; i < sd->ns && s->kauto; i++) {
     PetscInt off;
     PetscCall(PetscSectionGetOffset(ls, m->vstart + sd->sv[i], &off));
-    sd->kn[i] = sd->weight * s->kfactor * p->E * PetscRealPart(a[off]);
+    sd->kn[i] = sd->weight * s->kfactor * PetscRealPart(a[off]);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sd->hmin, 1, MPIU_REAL, MPIU_MIN, p->comm));
   PetscCall(VecRestoreArray(kl, &a));
@@ -390,7 +401,7 @@ PetscErrorCode ContactPairsSetUp(ContactPairs p, const Mesh *m)
   p->nside = 0;
   for (PetscInt k = 0; k < p->np; k++) {
     const PairSpec *s = &p->spec[k];
-    PetscCheck(!s->kauto || p->E > 0, p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_penalty_normal auto needs the material's Young's modulus: give a value", s->name);
+    PetscCheck(!s->kauto || p->E > 0 || p->Ecell, p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_penalty_normal auto needs the material's Young's modulus: give a value", s->name);
     for (int pass = 0; pass < (s->two_pass ? 2 : 1); pass++) {
       PairSide *sd = &p->side[p->nside++];
       sd->spec     = k;
@@ -424,6 +435,7 @@ PetscErrorCode ContactPairsDestroy(ContactPairs *p)
   PetscFunctionBeginUser;
   if (!*p) PetscFunctionReturn(0);
   for (PetscInt s = 0; s < (*p)->nside; s++) PetscCall(SideDestroy(&(*p)->side[s]));
+  PetscCall(PetscFree((*p)->Ecell));
   PetscCall(PetscFree(*p));
   PetscFunctionReturn(0);
 }

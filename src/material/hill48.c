@@ -64,8 +64,8 @@
    the tangent) are src/material/aniso.c's, shared with yld91; this file holds the return map in
    stress space. The first part of this file is the model on plain arrays
    (include/material_hill48.h); the second is the material type "hill48": its options (prefix
-   material_), view and kernel table; elasticity, hardening and their options are J2's
-   (material_j2.h). */
+   material_, or the material's own prefix), view and kernel table; elasticity, hardening and
+   their options are J2's (material_j2.h). */
 #include <float.h>
 #include <math.h>
 
@@ -321,12 +321,15 @@ static PetscErrorCode MaterialSetFromOptions_Hill48(Material mat)
 {
   HillParams *hp   = (HillParams *)mat->data;
   MPI_Comm    comm = mat->comm;
+  const char *pre  = mat->prefix; /* the options' names in the messages: -<pre>hill_r0, ... */
+  char        title[512];
 
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "material_", "Material hill48: finite-strain Hill 1948 anisotropic plasticity (log strains, isotropic hardening)", "Material");
+  PetscCall(MaterialOptionsTitle(mat, "hill48", "finite-strain Hill 1948 anisotropic plasticity (log strains, isotropic hardening)", title, sizeof(title)));
+  PetscOptionsBegin(comm, mat->prefix, title, "Material");
   {
-    const char *rname[3] = {"-material_hill_r0", "-material_hill_r45", "-material_hill_r90"};
-    const char *cname[6] = {"-material_hill_F", "-material_hill_G", "-material_hill_H", "-material_hill_L", "-material_hill_M", "-material_hill_N"};
+    const char *rname[3] = {"hill_r0", "hill_r45", "hill_r90"};
+    const char *cname[6] = {"hill_F", "hill_G", "hill_H", "hill_L", "hill_M", "hill_N"};
     double     *rv[3]    = {&hp->r0, &hp->r45, &hp->r90};
     double     *cv[6]    = {&hp->F, &hp->G, &hp->H, &hp->L, &hp->M, &hp->N};
     PetscBool   rset = PETSC_FALSE, cset = PETSC_FALSE, set;
@@ -352,35 +355,35 @@ static PetscErrorCode MaterialSetFromOptions_Hill48(Material mat)
     cset = cset || set;
     PetscCall(PetscOptionsReal("-hill_N", "Hill 48 coefficient N (12 shear)", NULL, hp->N, &hp->N, &set));
     cset = cset || set;
-    PetscCheck(!(rset && cset), comm, PETSC_ERR_USER_INPUT, "-material_hill_r0/r45/r90 and -material_hill_F/G/H/L/M/N exclude each other: give one set");
+    PetscCheck(!(rset && cset), comm, PETSC_ERR_USER_INPUT, "-%shill_r0/r45/r90 and -%shill_F/G/H/L/M/N exclude each other: give one set", pre, pre);
     if (cset) hp->from_r = 0;
     if (rset) hp->from_r = 1;
     for (int i = 0; i < 3 && hp->from_r; i++)
-      PetscCheck(*rv[i] > 0 && PetscIsNormalReal(*rv[i]), comm, PETSC_ERR_USER_INPUT, "%s %g must be positive", rname[i], (double)*rv[i]);
+      PetscCheck(*rv[i] > 0 && PetscIsNormalReal(*rv[i]), comm, PETSC_ERR_USER_INPUT, "-%s%s %g must be positive", pre, rname[i], (double)*rv[i]);
     if (!hp->from_r) {
-      for (int i = 0; i < 6; i++) PetscCheck(PetscIsNormalReal(*cv[i]) || *cv[i] == 0, comm, PETSC_ERR_USER_INPUT, "%s %g must be finite", cname[i], (double)*cv[i]);
-      for (int i = 3; i < 6; i++) PetscCheck(*cv[i] > 0, comm, PETSC_ERR_USER_INPUT, "%s %g must be positive", cname[i], (double)*cv[i]);
+      for (int i = 0; i < 6; i++) PetscCheck(PetscIsNormalReal(*cv[i]) || *cv[i] == 0, comm, PETSC_ERR_USER_INPUT, "-%s%s %g must be finite", pre, cname[i], (double)*cv[i]);
+      for (int i = 3; i < 6; i++) PetscCheck(*cv[i] > 0, comm, PETSC_ERR_USER_INPUT, "-%s%s %g must be positive", pre, cname[i], (double)*cv[i]);
       PetscCheck(hp->F + hp->G + hp->H > 0 && hp->F * hp->G + hp->G * hp->H + hp->H * hp->F > 0, comm, PETSC_ERR_USER_INPUT,
-                 "-material_hill_F %g, -material_hill_G %g, -material_hill_H %g give a non-convex yield surface (need F+G+H > 0 and FG+GH+HF > 0)", (double)hp->F, (double)hp->G,
+                 "-%shill_F %g, -%shill_G %g, -%shill_H %g give a non-convex yield surface (need F+G+H > 0 and FG+GH+HF > 0)", pre, (double)hp->F, pre, (double)hp->G, pre,
                  (double)hp->H);
     }
     for (int i = 0; i < 3; i++) v[i] = hp->rd[i];
     n = 3;
     PetscCall(PetscOptionsRealArray("-hill_rd", "Hill 48: rolling direction x,y,z", NULL, v, &n, &set));
-    PetscCheck(!set || n == 3, comm, PETSC_ERR_USER_INPUT, "-material_hill_rd needs 3 components x,y,z (got %d)", (int)n);
+    PetscCheck(!set || n == 3, comm, PETSC_ERR_USER_INPUT, "-%shill_rd needs 3 components x,y,z (got %d)", pre, (int)n);
     for (int i = 0; i < 3; i++) hp->rd[i] = v[i];
     for (int i = 0; i < 3; i++) v[i] = hp->nd[i];
     n = 3;
     PetscCall(PetscOptionsRealArray("-hill_normal", "Hill 48: sheet normal x,y,z", NULL, v, &n, &set));
-    PetscCheck(!set || n == 3, comm, PETSC_ERR_USER_INPUT, "-material_hill_normal needs 3 components x,y,z (got %d)", (int)n);
+    PetscCheck(!set || n == 3, comm, PETSC_ERR_USER_INPUT, "-%shill_normal needs 3 components x,y,z (got %d)", pre, (int)n);
     for (int i = 0; i < 3; i++) hp->nd[i] = v[i];
     {
       const double lr = sqrt(hp->rd[0] * hp->rd[0] + hp->rd[1] * hp->rd[1] + hp->rd[2] * hp->rd[2]);
       const double ln = sqrt(hp->nd[0] * hp->nd[0] + hp->nd[1] * hp->nd[1] + hp->nd[2] * hp->nd[2]);
       const double c  = (hp->rd[0] * hp->nd[0] + hp->rd[1] * hp->nd[1] + hp->rd[2] * hp->nd[2]) / (lr * ln);
-      PetscCheck(lr > 0 && PetscIsNormalReal(lr), comm, PETSC_ERR_USER_INPUT, "-material_hill_rd %g,%g,%g must be a non-zero vector", hp->rd[0], hp->rd[1], hp->rd[2]);
-      PetscCheck(ln > 0 && PetscIsNormalReal(ln), comm, PETSC_ERR_USER_INPUT, "-material_hill_normal %g,%g,%g must be a non-zero vector", hp->nd[0], hp->nd[1], hp->nd[2]);
-      PetscCheck(fabs(c) <= 1e-6, comm, PETSC_ERR_USER_INPUT, "-material_hill_rd %g,%g,%g and -material_hill_normal %g,%g,%g must be orthogonal (cosine %g)", hp->rd[0], hp->rd[1], hp->rd[2], hp->nd[0],
+      PetscCheck(lr > 0 && PetscIsNormalReal(lr), comm, PETSC_ERR_USER_INPUT, "-%shill_rd %g,%g,%g must be a non-zero vector", pre, hp->rd[0], hp->rd[1], hp->rd[2]);
+      PetscCheck(ln > 0 && PetscIsNormalReal(ln), comm, PETSC_ERR_USER_INPUT, "-%shill_normal %g,%g,%g must be a non-zero vector", pre, hp->nd[0], hp->nd[1], hp->nd[2]);
+      PetscCheck(fabs(c) <= 1e-6, comm, PETSC_ERR_USER_INPUT, "-%shill_rd %g,%g,%g and -%shill_normal %g,%g,%g must be orthogonal (cosine %g)", pre, hp->rd[0], hp->rd[1], hp->rd[2], pre, hp->nd[0],
                  hp->nd[1], hp->nd[2], c);
     }
     PetscCheck(Hill48ParamsSetup(hp) == HILL48_OK, comm, PETSC_ERR_USER_INPUT, "invalid Hill 48 parameters");

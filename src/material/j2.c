@@ -8,7 +8,8 @@
    b_tr. Everything is computed in the eigenbasis of b_tr.
 
    The first part of this file is the model on plain arrays (include/material_j2.h); the second
-   is the material type "j2": its options (prefix material_), view and kernel table. */
+   is the material type "j2": its options (prefix material_, or the material's own prefix set
+   with MaterialSetOptionsPrefix), view and kernel table. */
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
@@ -312,12 +313,15 @@ void J2KernelInit(const J2Params *mp, MaterialKernel *k)
 /* the material type "j2"                                                                      */
 /* ------------------------------------------------------------------------------------------ */
 /* The options of J2Params (elasticity, hardening law, return-map controls), read inside the
-   caller's PetscOptionsBegin block with the prefix "material_", validated, then J2ParamsSetup.
-   Shared by the types built on J2's elasticity and hardening (j2, hill48). */
+   caller's PetscOptionsBegin block with the caller's prefix (the material's: "material_" by
+   default, e.g. "body_die_material_" for a body's), validated -- the messages name the options
+   under that prefix, PetscOptionsObject->prefix --, then J2ParamsSetup.
+   Shared by the types built on J2's elasticity and hardening (j2, hill48, yld91). */
 PetscErrorCode J2ParamsSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, J2Params *mp)
 {
   const char *hard_types[] = {"linear", "swift", "HardeningLaw", "HARDENING_", NULL};
   PetscInt    ht           = (PetscInt)mp->law, maxit;
+  const char *pre          = PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "";
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsReal("-E", "Young's modulus", NULL, mp->E, &mp->E, NULL));
@@ -329,21 +333,21 @@ PetscErrorCode J2ParamsSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_
   PetscCall(PetscOptionsReal("-swift_K", "Swift: K in K (eps0 + ep)^n", NULL, mp->swK, &mp->swK, NULL));
   PetscCall(PetscOptionsReal("-swift_eps0", "Swift: eps0", NULL, mp->sweps0, &mp->sweps0, NULL));
   PetscCall(PetscOptionsReal("-swift_n", "Swift: exponent n", NULL, mp->swn, &mp->swn, NULL));
-  PetscCheck(mp->E > 0 && PetscIsNormalReal(mp->E), comm, PETSC_ERR_USER_INPUT, "-material_E %g must be positive", (double)mp->E);
-  PetscCheck(mp->nu > -1 && mp->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "-material_nu %g must lie in (-1, 0.5)", (double)mp->nu);
+  PetscCheck(mp->E > 0 && PetscIsNormalReal(mp->E), comm, PETSC_ERR_USER_INPUT, "-%sE %g must be positive", pre, (double)mp->E);
+  PetscCheck(mp->nu > -1 && mp->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "-%snu %g must lie in (-1, 0.5)", pre, (double)mp->nu);
   if (mp->law == HARDENING_LINEAR) {
-    PetscCheck(mp->sy0 > 0 && PetscIsNormalReal(mp->sy0), comm, PETSC_ERR_USER_INPUT, "-material_yield %g must be positive", (double)mp->sy0);
-    PetscCheck(mp->H >= 0 && (mp->H == 0 || PetscIsNormalReal(mp->H)), comm, PETSC_ERR_USER_INPUT, "-material_hardening_modulus %g must be >= 0", (double)mp->H);
+    PetscCheck(mp->sy0 > 0 && PetscIsNormalReal(mp->sy0), comm, PETSC_ERR_USER_INPUT, "-%syield %g must be positive", pre, (double)mp->sy0);
+    PetscCheck(mp->H >= 0 && (mp->H == 0 || PetscIsNormalReal(mp->H)), comm, PETSC_ERR_USER_INPUT, "-%shardening_modulus %g must be >= 0", pre, (double)mp->H);
   } else {
-    PetscCheck(mp->swK > 0 && PetscIsNormalReal(mp->swK), comm, PETSC_ERR_USER_INPUT, "-material_swift_K %g must be positive", (double)mp->swK);
-    PetscCheck(mp->sweps0 > 0 && PetscIsNormalReal(mp->sweps0), comm, PETSC_ERR_USER_INPUT, "-material_swift_eps0 %g must be positive", (double)mp->sweps0);
-    PetscCheck(mp->swn >= 0 && mp->swn < 1, comm, PETSC_ERR_USER_INPUT, "-material_swift_n %g must lie in [0, 1)", (double)mp->swn);
+    PetscCheck(mp->swK > 0 && PetscIsNormalReal(mp->swK), comm, PETSC_ERR_USER_INPUT, "-%sswift_K %g must be positive", pre, (double)mp->swK);
+    PetscCheck(mp->sweps0 > 0 && PetscIsNormalReal(mp->sweps0), comm, PETSC_ERR_USER_INPUT, "-%sswift_eps0 %g must be positive", pre, (double)mp->sweps0);
+    PetscCheck(mp->swn >= 0 && mp->swn < 1, comm, PETSC_ERR_USER_INPUT, "-%sswift_n %g must lie in [0, 1)", pre, (double)mp->swn);
   }
   maxit = mp->maxit;
   PetscCall(PetscOptionsReal("-return_rtol", "Relative tolerance of the local return map", NULL, mp->rtol, &mp->rtol, NULL));
   PetscCall(PetscOptionsInt("-return_maxit", "Iteration limit of the local return map", NULL, maxit, &maxit, NULL));
-  PetscCheck(mp->rtol > 0 && mp->rtol < 1, comm, PETSC_ERR_USER_INPUT, "-material_return_rtol %g must lie in (0, 1)", (double)mp->rtol);
-  PetscCheck(maxit >= 1, comm, PETSC_ERR_USER_INPUT, "-material_return_maxit %d must be >= 1", (int)maxit);
+  PetscCheck(mp->rtol > 0 && mp->rtol < 1, comm, PETSC_ERR_USER_INPUT, "-%sreturn_rtol %g must lie in (0, 1)", pre, (double)mp->rtol);
+  PetscCheck(maxit >= 1, comm, PETSC_ERR_USER_INPUT, "-%sreturn_maxit %d must be >= 1", pre, (int)maxit);
   mp->maxit = (int)maxit;
   PetscCheck(J2ParamsSetup(mp) == 0, comm, PETSC_ERR_USER_INPUT, "invalid material parameters");
   PetscFunctionReturn(0);
@@ -379,9 +383,11 @@ static PetscErrorCode MaterialSetFromOptions_J2(Material mat)
 {
   J2Params *mp   = (J2Params *)mat->data;
   MPI_Comm  comm = mat->comm;
+  char      title[512];
 
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "material_", "Material j2: finite-strain J2 plasticity (log strains, isotropic hardening)", "Material");
+  PetscCall(MaterialOptionsTitle(mat, "j2", "finite-strain J2 plasticity (log strains, isotropic hardening)", title, sizeof(title)));
+  PetscOptionsBegin(comm, mat->prefix, title, "Material");
   PetscCall(J2ParamsSetFromOptions(PetscOptionsObject, comm, mp));
   PetscOptionsEnd();
   mat->modulus = mp->E;

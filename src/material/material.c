@@ -6,16 +6,22 @@
         their defaults in mat->data and fills mat->kernel (nhist -- the history doubles per
         quadrature point, chosen at run time if need be --, ctx = mat->data, update,
         history_init, plastic_strain) and mat->ops (setfromoptions: reads the model's options
-        in its own PetscOptionsBegin block with the prefix "material_", validates them; view;
+        in its own PetscOptionsBegin block with the prefix mat->prefix ("material_" unless
+        MaterialSetOptionsPrefix changed it), validates them, naming an option in a message with
+        that prefix ("-%sE ...", mat->prefix); its group title from MaterialOptionsTitle; view;
         destroy: frees mat->data); see j2.c and include/material_impl.h;
      2. declare MaterialCreate_<Name> below and add its line to MaterialRegisterAll().
-   -material_type <name> then selects it; elements take the history width from kernel.nhist.
+   -material_type <name> (-<prefix>type) then selects it; elements take the history width from
+   kernel.nhist.
    A program may also register a type of its own with MaterialRegister() before
    MaterialSetFromOptions(). */
+#include <ctype.h>
 #include <string.h>
 
 #include "material_impl.h"
 #include "options.h"
+
+#define MATERIAL_DEFAULT_PREFIX "material_"
 
 static PetscFunctionList MaterialList;
 static PetscBool         MaterialRegisterAllCalled;
@@ -72,6 +78,42 @@ PetscErrorCode MaterialCreate(MPI_Comm comm, Material *mat)
   PetscCall(MaterialRegisterAll());
   PetscCall(PetscNew(mat));
   (*mat)->comm = comm;
+  PetscCall(PetscStrncpy((*mat)->prefix, MATERIAL_DEFAULT_PREFIX, sizeof((*mat)->prefix)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MaterialSetOptionsPrefix(Material mat, const char prefix[])
+{
+  size_t len;
+
+  PetscFunctionBeginUser;
+  PetscCheck(mat, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "null pointer: argument 1");
+  if (!prefix) prefix = MATERIAL_DEFAULT_PREFIX;
+  PetscCall(PetscStrlen(prefix, &len));
+  PetscCheck(len > 0 && len < sizeof(mat->prefix), mat->comm, PETSC_ERR_ARG_OUTOFRANGE, "material options prefix '%s': empty or longer than %d characters", prefix, (int)sizeof(mat->prefix) - 1);
+  PetscCheck(prefix[0] != '-', mat->comm, PETSC_ERR_ARG_WRONG, "material options prefix '%s': give it without the leading '-'", prefix);
+  for (const char *c = prefix; *c; c++) PetscCheck(!isspace((unsigned char)*c), mat->comm, PETSC_ERR_ARG_WRONG, "material options prefix '%s': contains white space", prefix);
+  PetscCall(PetscStrncpy(mat->prefix, prefix, sizeof(mat->prefix)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MaterialGetOptionsPrefix(Material mat, const char *prefix[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(mat && prefix, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "null pointer argument");
+  *prefix = mat->prefix;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MaterialOptionsTitle(Material mat, const char type[], const char what[], char title[], size_t len)
+{
+  PetscBool def;
+  char      body[sizeof(mat->prefix) + 8] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrcmp(mat->prefix, MATERIAL_DEFAULT_PREFIX, &def));
+  if (!def) PetscCall(PetscSNPrintf(body, sizeof(body), " (-%s)", mat->prefix));
+  PetscCall(PetscSNPrintf(title, len, "Material%s%s%s%s%s", type ? " " : "", type ? type : "", body, what ? ": " : "", what ? what : ""));
   PetscFunctionReturn(0);
 }
 
@@ -89,19 +131,20 @@ static PetscErrorCode MaterialReset(Material mat)
 
 PetscErrorCode MaterialSetFromOptions(Material mat)
 {
-  char      type[sizeof(mat->type_name)];
+  char      type[sizeof(mat->type_name)], title[sizeof(mat->prefix) + 32];
   PetscBool same, view = PETSC_FALSE;
   PetscErrorCode (*create)(Material) = NULL;
 
   PetscFunctionBeginUser;
   PetscCheck(mat, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "null pointer: argument 1");
   PetscCall(PetscStrncpy(type, mat->type_name[0] ? mat->type_name : "j2", sizeof(type)));
-  PetscOptionsBegin(mat->comm, "material_", "Material", "Material");
+  PetscCall(MaterialOptionsTitle(mat, NULL, NULL, title, sizeof(title)));
+  PetscOptionsBegin(mat->comm, mat->prefix, title, "Material");
   PetscCall(PetscOptionsFList("-type", "Material model", NULL, MaterialList, type, type, sizeof(type), NULL));
   PetscCall(PetscOptionsBool("-view", "Print the material's parameters once they are set (fitted coefficients included)", NULL, view, &view, NULL));
   PetscOptionsEnd();
   PetscCall(PetscFunctionListFind(MaterialList, type, &create));
-  PetscCheck(create, mat->comm, PETSC_ERR_USER_INPUT, "-material_type %s: unknown material (registered: %s)", type, MaterialTypeNames);
+  PetscCheck(create, mat->comm, PETSC_ERR_USER_INPUT, "-%stype %s: unknown material (registered: %s)", mat->prefix, type, MaterialTypeNames);
   PetscCall(PetscStrcmp(type, mat->type_name, &same));
   if (!same) {
     PetscCall(MaterialReset(mat));
@@ -150,7 +193,12 @@ PetscErrorCode MaterialView(Material mat, PetscViewer v)
   if (!v) v = PETSC_VIEWER_STDOUT_(mat->comm);
   PetscCall(PetscObjectTypeCompare((PetscObject)v, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(0);
-  PetscCall(PetscViewerASCIIPrintf(v, "Material: type %s\n", mat->type_name[0] ? mat->type_name : "(not set)"));
+  {
+    PetscBool def;
+    PetscCall(PetscStrcmp(mat->prefix, MATERIAL_DEFAULT_PREFIX, &def));
+    if (def) PetscCall(PetscViewerASCIIPrintf(v, "Material: type %s\n", mat->type_name[0] ? mat->type_name : "(not set)"));
+    else PetscCall(PetscViewerASCIIPrintf(v, "Material (-%s): type %s\n", mat->prefix, mat->type_name[0] ? mat->type_name : "(not set)"));
+  }
   if (mat->ops.view) {
     PetscCall(PetscViewerASCIIPushTab(v));
     PetscCall(mat->ops.view(mat, v));

@@ -350,11 +350,14 @@ static PetscErrorCode MaterialSetFromOptions_Umat(Material mat)
   PetscInt    nprops = UMAT_MAXPROPS, nstatev = p->nstatev, ep = p->ep_statev;
   PetscBool   setpath, setprops, help;
   double      props[UMAT_MAXPROPS];
+  const char *pre = mat->prefix; /* the options' names in the messages: -<pre>umat, ... */
+  char        title[512];
 
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(path, p->path, sizeof(path)));
   PetscCall(PetscStrncpy(symbol, p->symbol, sizeof(symbol)));
-  PetscOptionsBegin(comm, "material_", "Material umat: an Abaqus/Standard user material (SUBROUTINE UMAT) from a shared library", "Material");
+  PetscCall(MaterialOptionsTitle(mat, "umat", "an Abaqus/Standard user material (SUBROUTINE UMAT) from a shared library", title, sizeof(title)));
+  PetscOptionsBegin(comm, mat->prefix, title, "Material");
   PetscCall(PetscOptionsString("-umat", "Shared library with the UMAT", NULL, path, path, sizeof(path), &setpath));
   PetscCall(PetscOptionsString("-umat_symbol", "Its symbol (umat_ for gfortran's SUBROUTINE UMAT; umat is tried after umat_)", NULL, symbol, symbol, sizeof(symbol), NULL));
   PetscCall(PetscOptionsRealArray("-umat_props", "PROPS, comma-separated", NULL, props, &nprops, &setprops));
@@ -363,12 +366,12 @@ static PetscErrorCode MaterialSetFromOptions_Umat(Material mat)
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (help && !path[0]) PetscFunctionReturn(0); /* -help lists the options; nothing runs */
-  PetscCheck(path[0], comm, PETSC_ERR_USER_INPUT, "-material_type umat needs -material_umat PATH (a shared library with SUBROUTINE UMAT)");
-  PetscCheck(nstatev >= 0 && nstatev <= 100000, comm, PETSC_ERR_USER_INPUT, "-material_umat_nstatev %d must lie in [0, 100000]", (int)nstatev);
-  PetscCheck(ep >= 0 && ep <= nstatev, comm, PETSC_ERR_USER_INPUT, "-material_umat_statev_ep %d must lie in [0, nstatev = %d]", (int)ep, (int)nstatev);
+  PetscCheck(path[0], comm, PETSC_ERR_USER_INPUT, "-%stype umat needs -%sumat PATH (a shared library with SUBROUTINE UMAT)", pre, pre);
+  PetscCheck(nstatev >= 0 && nstatev <= 100000, comm, PETSC_ERR_USER_INPUT, "-%sumat_nstatev %d must lie in [0, 100000]", pre, (int)nstatev);
+  PetscCheck(ep >= 0 && ep <= nstatev, comm, PETSC_ERR_USER_INPUT, "-%sumat_statev_ep %d must lie in [0, nstatev = %d]", pre, (int)ep, (int)nstatev);
   if (setprops) {
-    PetscCheck(nprops <= UMAT_MAXPROPS, comm, PETSC_ERR_USER_INPUT, "-material_umat_props: at most %d values", UMAT_MAXPROPS);
-    for (PetscInt i = 0; i < nprops; i++) PetscCheck(isfinite(props[i]), comm, PETSC_ERR_USER_INPUT, "-material_umat_props: value %d is not a finite number", (int)i + 1);
+    PetscCheck(nprops <= UMAT_MAXPROPS, comm, PETSC_ERR_USER_INPUT, "-%sumat_props: at most %d values", pre, UMAT_MAXPROPS);
+    for (PetscInt i = 0; i < nprops; i++) PetscCheck(isfinite(props[i]), comm, PETSC_ERR_USER_INPUT, "-%sumat_props: value %d is not a finite number", pre, (int)i + 1);
     p->nprops = (int)nprops;
     for (PetscInt i = 0; i < nprops; i++) p->props[i] = props[i];
   }
@@ -379,7 +382,7 @@ static PetscErrorCode MaterialSetFromOptions_Umat(Material mat)
     const char *err;
     UmatClose(p);
     dl = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    PetscCheck(dl, comm, PETSC_ERR_USER_INPUT, "-material_umat %s: cannot load the library: %s", path, (err = dlerror()) ? err : "unknown error");
+    PetscCheck(dl, comm, PETSC_ERR_USER_INPUT, "-%sumat %s: cannot load the library: %s", pre, path, (err = dlerror()) ? err : "unknown error");
     dlerror();
     fn  = dlsym(dl, symbol);
     err = dlerror();
@@ -391,7 +394,7 @@ static PetscErrorCode MaterialSetFromOptions_Umat(Material mat)
       char msg[1024];
       snprintf(msg, sizeof(msg), "%s", err ? err : "null symbol");
       dlclose(dl);
-      SETERRQ(comm, PETSC_ERR_USER_INPUT, "-material_umat_symbol %s: not found in %s: %s", symbol, path, msg);
+      SETERRQ(comm, PETSC_ERR_USER_INPUT, "-%sumat_symbol %s: not found in %s: %s", pre, symbol, path, msg);
     }
     p->dl = dl;
     *(void **)&p->fn = fn;

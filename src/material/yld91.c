@@ -60,7 +60,8 @@
    direction has sigma_e = sigma; c4 = c5 = 1).
 
    The first part of this file is the model on plain arrays (include/material_yld91.h); the
-   second is the material type "yld91": its options (prefix material_), view and kernel table. */
+   second is the material type "yld91": its options (prefix material_, or the material's own
+   prefix), view and kernel table. */
 #include <math.h>
 
 #include "material_aniso.h"
@@ -447,11 +448,14 @@ static PetscErrorCode MaterialSetFromOptions_Yld91(Material mat)
 {
   Yld91Params *yp   = (Yld91Params *)mat->data;
   MPI_Comm     comm = mat->comm;
+  const char  *pre  = mat->prefix; /* the options' names in the messages: -<pre>yld91_r0, ... */
+  char         title[512];
 
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "material_", "Material yld91: finite-strain Barlat 1991 anisotropic plasticity (log strains, isotropic hardening)", "Material");
+  PetscCall(MaterialOptionsTitle(mat, "yld91", "finite-strain Barlat 1991 anisotropic plasticity (log strains, isotropic hardening)", title, sizeof(title)));
+  PetscOptionsBegin(comm, mat->prefix, title, "Material");
   {
-    const char *rname[3] = {"-material_yld91_r0", "-material_yld91_r45", "-material_yld91_r90"};
+    const char *rname[3] = {"yld91_r0", "yld91_r45", "yld91_r90"};
     double     *rv[3]    = {&yp->r0, &yp->r45, &yp->r90};
     PetscBool   rset = PETSC_FALSE, cset, set;
     PetscInt    nc = 6, n, m = yp->m;
@@ -460,7 +464,7 @@ static PetscErrorCode MaterialSetFromOptions_Yld91(Material mat)
 
     PetscCall(J2ParamsSetFromOptions(PetscOptionsObject, comm, &yp->base));
     PetscCall(PetscOptionsInt("-yld91_exponent", "Barlat 1991: exponent m (an even integer; 8 for fcc metals such as aluminium, 6 for bcc; 2 is Hill 1948)", NULL, m, &m, NULL));
-    PetscCheck(m >= 2 && m <= 32 && m % 2 == 0, comm, PETSC_ERR_USER_INPUT, "-material_yld91_exponent %d must be an even integer in [2, 32]", (int)m);
+    PetscCheck(m >= 2 && m <= 32 && m % 2 == 0, comm, PETSC_ERR_USER_INPUT, "-%syld91_exponent %d must be an even integer in [2, 32]", pre, (int)m);
     yp->m = (int)m;
     PetscCall(PetscOptionsReal("-yld91_r0", "Barlat 1991: r-value at 0 deg to the rolling direction (c1..c6 fitted to the three)", NULL, yp->r0, &yp->r0, &set));
     rset = rset || set;
@@ -470,36 +474,36 @@ static PetscErrorCode MaterialSetFromOptions_Yld91(Material mat)
     rset = rset || set;
     for (int i = 0; i < 6; i++) v[i] = yp->c[i];
     PetscCall(PetscOptionsRealArray("-yld91_c", "Barlat 1991: c1,c2,c3,c4,c5,c6 (instead of the r-values; the effective stress as they define it)", NULL, v, &nc, &cset));
-    PetscCheck(!(rset && cset), comm, PETSC_ERR_USER_INPUT, "-material_yld91_r0/r45/r90 and -material_yld91_c exclude each other: give one set");
+    PetscCheck(!(rset && cset), comm, PETSC_ERR_USER_INPUT, "-%syld91_r0/r45/r90 and -%syld91_c exclude each other: give one set", pre, pre);
     if (cset) {
-      PetscCheck(nc == 6, comm, PETSC_ERR_USER_INPUT, "-material_yld91_c needs 6 coefficients c1,c2,c3,c4,c5,c6 (got %d)", (int)nc);
-      for (int i = 0; i < 6; i++) PetscCheck(PetscIsNormalReal(v[i]) || v[i] == 0, comm, PETSC_ERR_USER_INPUT, "-material_yld91_c: c%d = %g must be finite", i + 1, (double)v[i]);
-      for (int i = 3; i < 6; i++) PetscCheck(v[i] > 0, comm, PETSC_ERR_USER_INPUT, "-material_yld91_c: c%d = %g must be positive", i + 1, (double)v[i]);
-      PetscCheck(fabs(v[0] * v[1] + v[1] * v[2] + v[2] * v[0]) > 0, comm, PETSC_ERR_USER_INPUT, "-material_yld91_c: c1 c2 + c2 c3 + c3 c1 = 0 gives a degenerate yield function");
+      PetscCheck(nc == 6, comm, PETSC_ERR_USER_INPUT, "-%syld91_c needs 6 coefficients c1,c2,c3,c4,c5,c6 (got %d)", pre, (int)nc);
+      for (int i = 0; i < 6; i++) PetscCheck(PetscIsNormalReal(v[i]) || v[i] == 0, comm, PETSC_ERR_USER_INPUT, "-%syld91_c: c%d = %g must be finite", pre, i + 1, (double)v[i]);
+      for (int i = 3; i < 6; i++) PetscCheck(v[i] > 0, comm, PETSC_ERR_USER_INPUT, "-%syld91_c: c%d = %g must be positive", pre, i + 1, (double)v[i]);
+      PetscCheck(fabs(v[0] * v[1] + v[1] * v[2] + v[2] * v[0]) > 0, comm, PETSC_ERR_USER_INPUT, "-%syld91_c: c1 c2 + c2 c3 + c3 c1 = 0 gives a degenerate yield function", pre);
       for (int i = 0; i < 6; i++) yp->c[i] = v[i];
       yp->from_r = 0;
     }
     if (rset) yp->from_r = 1;
     for (int i = 0; i < 3 && yp->from_r; i++)
-      PetscCheck(*rv[i] > 0 && PetscIsNormalReal(*rv[i]), comm, PETSC_ERR_USER_INPUT, "%s %g must be positive", rname[i], (double)*rv[i]);
+      PetscCheck(*rv[i] > 0 && PetscIsNormalReal(*rv[i]), comm, PETSC_ERR_USER_INPUT, "-%s%s %g must be positive", pre, rname[i], (double)*rv[i]);
     for (int i = 0; i < 3; i++) v[i] = yp->rd[i];
     n = 3;
     PetscCall(PetscOptionsRealArray("-yld91_rd", "Barlat 1991: rolling direction x,y,z", NULL, v, &n, &set));
-    PetscCheck(!set || n == 3, comm, PETSC_ERR_USER_INPUT, "-material_yld91_rd needs 3 components x,y,z (got %d)", (int)n);
+    PetscCheck(!set || n == 3, comm, PETSC_ERR_USER_INPUT, "-%syld91_rd needs 3 components x,y,z (got %d)", pre, (int)n);
     for (int i = 0; i < 3; i++) yp->rd[i] = v[i];
     for (int i = 0; i < 3; i++) v[i] = yp->nd[i];
     n = 3;
     PetscCall(PetscOptionsRealArray("-yld91_normal", "Barlat 1991: sheet normal x,y,z", NULL, v, &n, &set));
-    PetscCheck(!set || n == 3, comm, PETSC_ERR_USER_INPUT, "-material_yld91_normal needs 3 components x,y,z (got %d)", (int)n);
+    PetscCheck(!set || n == 3, comm, PETSC_ERR_USER_INPUT, "-%syld91_normal needs 3 components x,y,z (got %d)", pre, (int)n);
     for (int i = 0; i < 3; i++) yp->nd[i] = v[i];
     {
       double A[9];
-      PetscCheck(AnisoFrame(yp->rd, yp->nd, A) == 0, comm, PETSC_ERR_USER_INPUT, "-material_yld91_rd %g,%g,%g and -material_yld91_normal %g,%g,%g must be non-zero and orthogonal", yp->rd[0], yp->rd[1],
-                 yp->rd[2], yp->nd[0], yp->nd[1], yp->nd[2]);
+      PetscCheck(AnisoFrame(yp->rd, yp->nd, A) == 0, comm, PETSC_ERR_USER_INPUT, "-%syld91_rd %g,%g,%g and -%syld91_normal %g,%g,%g must be non-zero and orthogonal", pre, yp->rd[0], yp->rd[1],
+                 yp->rd[2], pre, yp->nd[0], yp->nd[1], yp->nd[2]);
     }
     st = Yld91ParamsSetup(yp);
-    PetscCheck(st != YLD91_ERR_FIT, comm, PETSC_ERR_USER_INPUT, "-material_yld91_r0 %g, -material_yld91_r45 %g, -material_yld91_r90 %g: the fit of c1..c6 (exponent %d) to these r-values did not converge", yp->r0,
-               yp->r45, yp->r90, yp->m);
+    PetscCheck(st != YLD91_ERR_FIT, comm, PETSC_ERR_USER_INPUT, "-%syld91_r0 %g, -%syld91_r45 %g, -%syld91_r90 %g: the fit of c1..c6 (exponent %d) to these r-values did not converge", pre, yp->r0, pre,
+               yp->r45, pre, yp->r90, yp->m);
     PetscCheck(st == YLD91_OK, comm, PETSC_ERR_USER_INPUT, "invalid Barlat 1991 parameters (status %d)", st);
   }
   PetscOptionsEnd();

@@ -691,7 +691,8 @@ PetscErrorCode StepperRun(Stepper *st, Problem *pb, Results *res)
       lam_t = (next - lam_c - h < tol) ? next : lam_c + h;
       pb->lambda  = lam_t;
       /* the increment, for a material that uses it (a user material's TIME, DTIME, KSTEP, KINC) */
-      if (pb->mk->set_increment) pb->mk->set_increment(pb->mk->ctx, (double)(lam_c - sg->t0), (double)lam_c, (double)(lam_t - lam_c), (int)stage + 1, (int)step + 1);
+      for (PetscInt k = 0; k < pb->nmat; k++)
+        if (pb->mks[k]->set_increment) pb->mks[k]->set_increment(pb->mks[k]->ctx, (double)(lam_c - sg->t0), (double)lam_c, (double)(lam_t - lam_c), (int)stage + 1, (int)step + 1);
       pb->cutback = PETSC_FALSE; /* a request of the predictor's evaluations counts for this attempt */
       PetscCall(VecCopy(pb->Uc, pb->U));
       /* a fresh factorisation for every step, so that a step depends only on the committed state:

@@ -113,15 +113,16 @@ static PetscErrorCode Assemble(Problem *pb, Vec U, PetscReal lambda, PetscBool r
         ue[3 * a + i] = PetscRealPart(u[o + i]);
       }
     }
-    if (pb->mk->set_point) pb->mk->set_point(pb->mk->ctx, (int)m->elem_id[e], -1, NULL, 0.0);
-    const int st = ek->kernel(ek->ctx, pb->mk, X, ue, pb->hist_c + (size_t)e * pb->nhc, fe, J ? ke : NULL, pb->hist_t + (size_t)e * pb->nhc, want_info ? &pb->einfo[e] : NULL);
+    const MaterialKernel *mk = pb->mks[pb->cmat ? pb->cmat[e] : 0];
+    if (mk->set_point) mk->set_point(mk->ctx, (int)m->elem_id[e], -1, NULL, 0.0);
+    const int st = ek->kernel(ek->ctx, mk, X, ue, pb->hist_c + (size_t)e * pb->nhc, fe, J ? ke : NULL, pb->hist_t + (size_t)e * pb->nhc, want_info ? &pb->einfo[e] : NULL);
     if (st != MAT_OK) {
       nfail++;
       ncut += st == MAT_ERR_CUTBACK;
       if (m->elem_id[e] < badid) {
         badid = m->elem_id[e];
         badst = st;
-        badpt = st == MAT_ERR_NAN && pb->mk->failed_point ? pb->mk->failed_point(pb->mk->ctx) : 0;
+        badpt = st == MAT_ERR_NAN && mk->failed_point ? mk->failed_point(mk->ctx) : 0;
       }
       continue;
     }
@@ -510,15 +511,29 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
     pb->assembly_coo = PETSC_FALSE;
   }
   PetscCall(MaterialGetKernel(mat, &pb->mk));
+  if (!pb->nmat) { /* one material for the whole mesh */
+    pb->nmat    = 1;
+    pb->mats[0] = mat;
+  }
+  for (PetscInt k = 0; k < pb->nmat; k++) PetscCall(MaterialGetKernel(pb->mats[k], &pb->mks[k]));
   PetscCall(ElementGetKernel(el, &pb->ek));
   PetscCheck(pb->ek->nen == 8, pb->comm, PETSC_ERR_SUP, "-element_type %s: the mesh has 8-node hexahedra, the element %d nodes", pb->ek->name, pb->ek->nen);
   PetscCall(PetscLogEventRegister("AtritoResidual", DM_CLASSID, &pb->ev_residual));
   PetscCall(PetscLogEventRegister("AtritoJacobian", DM_CLASSID, &pb->ev_jacobian));
-  pb->nhc = (PetscInt)pb->ek->nqp * pb->mk->nhist + pb->ek->nstate;
+  {
+    /* per cell the history of its material's points, then the element's state (at the offset its
+       material's width sets): the widest material's */
+    int nh = 0;
+    for (PetscInt k = 0; k < pb->nmat; k++) nh = PetscMax(nh, pb->mks[k]->nhist);
+    pb->nhc = (PetscInt)pb->ek->nqp * nh + pb->ek->nstate;
+  }
   PetscCall(PetscMalloc2((size_t)m->nc * pb->nhc, &pb->hist_c, (size_t)m->nc * pb->nhc, &pb->hist_t));
   PetscCall(PetscArrayzero(pb->hist_c, (size_t)m->nc * pb->nhc));
   for (PetscInt e = 0; e < m->nc; e++)
-    for (int q = 0; q < pb->ek->nqp; q++) pb->mk->history_init(pb->mk->ctx, pb->hist_c + (size_t)e * pb->nhc + (size_t)q * pb->mk->nhist);
+    for (int q = 0; q < pb->ek->nqp; q++) {
+      const MaterialKernel *mk = pb->mks[pb->cmat ? pb->cmat[e] : 0];
+      mk->history_init(mk->ctx, pb->hist_c + (size_t)e * pb->nhc + (size_t)q * mk->nhist);
+    }
   PetscCall(PetscArraycpy(pb->hist_t, pb->hist_c, (size_t)m->nc * pb->nhc));
   PetscCall(PetscCalloc1(m->nc, &pb->einfo));
   PetscCall(DMCreateGlobalVector(m->dm, &pb->U));
@@ -649,9 +664,22 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ProblemSetMaterials(Problem *pb, PetscInt n, const Material *mats, const PetscInt *cmat, PetscInt nc)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n >= 1 && n <= PROBLEM_MAX_MAT, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "at most %d materials", PROBLEM_MAX_MAT);
+  pb->nmat = n;
+  for (PetscInt k = 0; k < n; k++) pb->mats[k] = mats[k];
+  PetscCall(PetscFree(pb->cmat));
+  PetscCall(PetscMalloc1(nc + 1, &pb->cmat));
+  PetscCall(PetscArraycpy(pb->cmat, cmat, nc));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ProblemDestroy(Problem *pb)
 {
   PetscFunctionBeginUser;
+  PetscCall(PetscFree(pb->cmat));
   PetscCall(SNESDestroy(&pb->snes));
   PetscCall(MatDestroy(&pb->J));
   PetscCall(VecDestroy(&pb->U));
