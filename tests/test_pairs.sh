@@ -115,4 +115,23 @@ atrito 2 rst $SLIDE -pair_p_friction 0.3 -load_steps 8 -checkpoint_interval 2 -r
 
 # 5. Hertz
 atrito 1 hertz1 -options_file cases/pair_hertz.opts && pycheck hertz_pair "$OUT/hertz1" --tol 0.02 --quiet
-atrito 2 hertz2 -options_file cases/pair_hertz.opts -output_interval 0 && compare "$OUT/hertz1/contact.csv" "$OUT/hertz2/contact.csv" 8 "Hertz pair, np=1 and np=2: contact.csv"
+atrito 2 hertz2 -options_file cases/pair_hertz.opts && compare "$OUT/hertz1/contact.csv" "$OUT/hertz2/contact.csv" 8 "Hertz pair, np=1 and np=2: contact.csv" &&
+  $PY - "$OUT/hertz2/fields.h5" cases/meshes/pair_hertz.inp <<'PY'
+# both surfaces' normal forces in the node fields: the master nodes' (the slave nodes' forces on
+# their faces, per vertex, on the vertex's mean normal) sum to the slave nodes' (2 ranks)
+import re, sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+k = sorted(f["steps"].keys())[-1]
+fn = np.array(f["steps"][k]["contact_normal_force"]).ravel()
+ids = np.array(f["mesh/node_ids"]).ravel()
+txt = open(sys.argv[2]).read()
+def nset(name):
+    m = re.search(r"\*NSET,\s*NSET=%s\s*\n(.*?)(?=\n\*)" % name, txt, re.S | re.I)
+    return {int(t) for t in re.split(r"[,\s]+", m.group(1).strip()) if t}
+S, M = nset("block_top"), nset("cyl_surface")
+fs = fn[np.array([i in S for i in ids])].sum()
+fm = fn[np.array([i in M for i in ids])].sum()
+e = abs(fm / fs - 1)
+print(("ok" if e < 1e-4 else "not ok") + f" - Hertz pair: the master surface's normal forces sum to {fm:.6f}, the slave's to {fs:.6f} (relative {e:.1e} < 1e-4)")
+sys.exit(0 if e < 1e-4 else 1)
+PY

@@ -61,6 +61,8 @@ typedef struct {
   /* master faces of this rank's cells (roots) */
   PetscInt   nfo, *fov, *foid, *fog; /* 4 nfo local vertices; 12 nfo ids (the first of each 12); 12 nfo global dofs */
   PetscReal *fox, *fox0, *fof;       /* 12 nfo: current and committed corner positions, forces   */
+  PetscReal *fofc;                   /* 12 nfo: the forces on the corners in the committed state (the
+                                        residual terms: minus the forces the slave nodes exert)     */
   /* candidate faces (leaves) */
   PetscInt   nfc, *fcid, *fcg;
   PetscReal *fcx, *fcx0, *fcf;
@@ -91,6 +93,7 @@ struct _p_ContactPairs {
   const Mesh *mesh;
   PetscReal   E;
   PetscReal  *Ecell;         /* per local cell its material's modulus (several bodies), else NULL */
+  PetscReal  *mforce;        /* work: 3 nv, the master nodes' forces (ContactPairsGetNodeFields) */
   PetscInt    np;
   PairSpec    spec[PAIR_MAX];
   PetscInt    nside;
@@ -314,7 +317,8 @@ static PetscErrorCode SideSetUp(ContactPairs p, PairSide *sd)
   PetscCall(MeshGetBoundaryFaces(m, sd->mset, &nf, &sd->fov, &fc));
   sd->nfo = nf;
   PetscCall(PetscMalloc4(12 * nf + 1, &sd->foid, 12 * nf + 1, &sd->fog, 12 * nf + 1, &sd->fox, 12 * nf + 1, &sd->fox0));
-  PetscCall(PetscMalloc1(12 * nf + 1, &sd->fof));
+  PetscCall(PetscCalloc1(12 * nf + 1, &sd->fof));
+  PetscCall(PetscCalloc1(12 * nf + 1, &sd->fofc));
   for (PetscInt f = 0; f < nf; f++) {
     sd->foid[12 * f] = 6 * m->elem_src[fc[f] / 6] + fc[f] % 6;
     for (int a = 0; a < 4; a++) PetscCall(MeshVertexDofs(m, sd->fov[4 * f + a], sd->fog + 12 * f + 3 * a));
@@ -420,6 +424,7 @@ static PetscErrorCode SideDestroy(PairSide *sd)
   PetscCall(PetscFree(sd->fov));
   PetscCall(PetscFree4(sd->foid, sd->fog, sd->fox, sd->fox0));
   PetscCall(PetscFree(sd->fof));
+  PetscCall(PetscFree(sd->fofc));
   PetscCall(PetscFree5(sd->fcid, sd->fcg, sd->fcx, sd->fcx0, sd->fcf));
   PetscCall(PetscSFDestroy(&sd->sf));
   PetscCall(PetscFree4(sd->sv, sd->sg, sd->kn, sd->kt));
@@ -820,19 +825,29 @@ PetscErrorCode ContactPairsCommit(ContactPairs p)
     PairSide *sd = &p->side[s];
     PetscCall(PetscArraycpy(sd->st_c, sd->st_t, sd->ns));
     PetscCall(PetscArraycpy(sd->fox0, sd->fox, 12 * sd->nfo));
+    PetscCall(PetscArraycpy(sd->fofc, sd->fof, 12 * sd->nfo));
   }
   PetscFunctionReturn(0);
 }
 
+/* The node fields: the slave nodes' own states; the master nodes' from the forces the slave nodes
+   exert on their faces (committed), summed per vertex over the faces and the ranks, with the
+   vertex's normal the area-weighted mean of its master faces' (the forces pressing on the master
+   surface: normal force -F.n, tangential F - (F.n) n). Collective. */
 PetscErrorCode ContactPairsGetNodeFields(ContactPairs p, PetscReal *gap, PetscReal *fn, PetscReal *ft, PetscReal *status, PetscReal *slip)
 {
+  const Mesh  *m = p ? p->mesh : NULL;
+  Vec          vl, vg;
+  PetscSection ls;
+  PetscScalar *a;
+
   PetscFunctionBeginUser;
-  if (!p) PetscFunctionReturn(0);
+  if (!p || !p->np) PetscFunctionReturn(0);
   for (PetscInt s = 0; s < p->nside; s++) {
     PairSide *sd = &p->side[s];
     for (PetscInt i = 0; i < sd->ns; i++) {
       const PairState *st = &sd->st_c[i];
-      const PetscInt   r  = p->mesh->vrow[sd->sv[i]];
+      const PetscInt   r  = m->vrow[sd->sv[i]];
       if (r < 0) continue;
       if (st->face >= 0 && gap) gap[r] = st->gap;
       if (fn) fn[r] += st->tN;
@@ -842,6 +857,69 @@ PetscErrorCode ContactPairsGetNodeFields(ContactPairs p, PetscReal *gap, PetscRe
       if (slip) slip[r] += st->slip;
     }
   }
+  /* the master side: per vertex the force (3) and the normal (3), through the unconstrained
+     section's local vectors (6 values per vertex: two of them) */
+  PetscCall(DMGetLocalSection(m->dmr, &ls));
+  for (int part = 0; part < 2; part++) {
+    PetscCall(DMCreateLocalVector(m->dmr, &vl));
+    PetscCall(DMCreateGlobalVector(m->dmr, &vg));
+    PetscCall(VecZeroEntries(vl));
+    PetscCall(VecGetArray(vl, &a));
+    for (PetscInt s = 0; s < p->nside; s++) {
+      const PairSide *sd = &p->side[s];
+      for (PetscInt f = 0; f < sd->nfo; f++) {
+        const PetscReal *x = sd->fox0 + 12 * f;
+        double           d1[3], d2[3], nr[3];
+        for (int k = 0; k < 3; k++) {
+          d1[k] = x[6 + k] - x[k];
+          d2[k] = x[9 + k] - x[3 + k];
+        }
+        nr[0] = 0.5 * (d1[1] * d2[2] - d1[2] * d2[1]); /* the face's area times its normal */
+        nr[1] = 0.5 * (d1[2] * d2[0] - d1[0] * d2[2]);
+        nr[2] = 0.5 * (d1[0] * d2[1] - d1[1] * d2[0]);
+        for (int c = 0; c < 4; c++) {
+          PetscInt off;
+          PetscCall(PetscSectionGetOffset(ls, m->vstart + sd->fov[4 * f + c], &off));
+          for (int k = 0; k < 3; k++) a[off + k] += part ? nr[k] : -sd->fofc[12 * f + 3 * c + k];
+        }
+      }
+    }
+    PetscCall(VecRestoreArray(vl, &a));
+    PetscCall(VecZeroEntries(vg));
+    PetscCall(DMLocalToGlobal(m->dmr, vl, ADD_VALUES, vg));
+    PetscCall(DMGlobalToLocal(m->dmr, vg, INSERT_VALUES, vl));
+    PetscCall(VecGetArray(vl, &a));
+    if (!part) PetscCall(PetscMalloc1(3 * m->nv + 1, &p->mforce));
+    for (PetscInt v = 0; v < m->nv && !part; v++) {
+      PetscInt off;
+      PetscCall(PetscSectionGetOffset(ls, m->vstart + v, &off));
+      for (int k = 0; k < 3; k++) p->mforce[3 * v + k] = PetscRealPart(a[off + k]);
+    }
+    for (PetscInt v = 0; v < m->nv && part; v++) {
+      PetscInt        off, r = m->vrow[v];
+      PetscReal       nr[3], nn = 0, F[3], Fn = 0;
+      if (r < 0) continue;
+      PetscCall(PetscSectionGetOffset(ls, m->vstart + v, &off));
+      for (int k = 0; k < 3; k++) {
+        nr[k] = PetscRealPart(a[off + k]);
+        nn += nr[k] * nr[k];
+        F[k] = p->mforce[3 * v + k];
+      }
+      if (!(nn > 0)) continue; /* not a master node */
+      nn = PetscSqrtReal(nn);
+      for (int k = 0; k < 3; k++) {
+        nr[k] /= nn;
+        Fn += F[k] * nr[k];
+      }
+      if (fn) fn[r] += -Fn;
+      for (int k = 0; ft && k < 3; k++) ft[3 * r + k] += F[k] - Fn * nr[k];
+      if (status && -Fn > 0 && !(status[r] > 0)) status[r] = 3;
+    }
+    PetscCall(VecRestoreArray(vl, &a));
+    PetscCall(VecDestroy(&vl));
+    PetscCall(VecDestroy(&vg));
+  }
+  PetscCall(PetscFree(p->mforce));
   PetscFunctionReturn(0);
 }
 
