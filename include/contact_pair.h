@@ -9,7 +9,7 @@
    to them).
 
    In parallel each rank handles its own slave nodes; the master faces near them, wherever they
-   live, are sent to it as ghosts (the candidates, chosen at the start of every step by the boxes of
+   live, are sent to it as ghosts (the candidates, chosen at the start of every Newton iteration by the boxes of
    each rank's slave nodes), their positions refreshed at every evaluation and their forces
    returned to the faces' owners (PetscSF). A face is one cell's, so it has one owner.
 
@@ -45,9 +45,9 @@ PetscErrorCode ContactPairsSetYoungModulus(ContactPairs p, PetscReal E);
 PetscErrorCode ContactPairsSetCellModuli(ContactPairs p, PetscInt nc, const PetscReal *Ec);
 PetscErrorCode ContactPairsSetUp(ContactPairs p, const Mesh *m);
 PetscErrorCode ContactPairsDestroy(ContactPairs *p);
-/* collective. from_committed: the step's start (or a retry): the candidate faces of every slave
-   node are found at u, the committed frames become the seeds; else (a Newton iteration's start)
-   eq 30 at u */
+/* collective. from_committed: the step's start (or a retry): the committed frames become the
+   seeds; else (a Newton iteration's start) eq 30 at u; either way the candidate faces of every
+   slave node are found again at u (fixed within the Newton iteration) */
 PetscErrorCode ContactPairsSeed(ContactPairs p, const PetscScalar *u, PetscBool from_committed);
 /* collective: the residual at u (local, with boundary values) into the local f (may be NULL) and
    the tangent into J (may be NULL; MatSetValues, rows of other ranks included); trial states;

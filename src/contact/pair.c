@@ -183,7 +183,7 @@ PetscErrorCode ContactPairsSetFromOptions(ContactPairs p)
     PetscCheck(!ht || (s->aug_tol > 0 && PetscIsNormalReal(s->aug_tol)), comm, PETSC_ERR_USER_INPUT, "-pair_%s_augmented_tol %g must be positive", s->name, (double)s->aug_tol);
     PetscCall(PetscOptionsReal("-augmented_multiplier_tol", "Augmented Lagrangian: the largest change of a multiplier accepted, relative to the largest multiplier", "doc/contact.md", s->aug_mtol, &s->aug_mtol, NULL));
     PetscCheck(s->aug_mtol > 0 && PetscIsNormalReal(s->aug_mtol), comm, PETSC_ERR_USER_INPUT, "-pair_%s_augmented_multiplier_tol %g must be positive", s->name, (double)s->aug_mtol);
-    PetscCall(PetscOptionsReal("-search_distance", "Candidate faces of a slave node: those whose box lies within this distance of it at the step's start (default: twice the largest master face's diagonal)", "doc/contact.md", s->search, &s->search, NULL));
+    PetscCall(PetscOptionsReal("-search_distance", "Candidate faces of a slave node: those whose box lies within this distance of it at the start of each Newton iteration (default: twice the largest master face's diagonal)", "doc/contact.md", s->search, &s->search, NULL));
     PetscOptionsEnd();
     PetscCheck(hs && s->slave[0], comm, PETSC_ERR_USER_INPUT, "-pair_%s_slave: the pair needs a node set of slave nodes", s->name);
     PetscCheck(hm && s->master[0], comm, PETSC_ERR_USER_INPUT, "-pair_%s_master: the pair needs a node set of master faces", s->name);
@@ -533,18 +533,61 @@ static PetscErrorCode SideCandidates(ContactPairs p, PairSide *sd, const PetscSc
   PetscCall(PetscSFBcastBegin(sd->sf, MPIU_REAL, sd->fox, sd->fcx, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(sd->sf, MPIU_REAL, sd->fox, sd->fcx, MPI_REPLACE));
   /* per slave node */
+  /* per slave node: a uniform grid of bins over this rank's slave box (bins at least the search
+     distance wide, at most 64 per direction); each candidate, widened by the search distance, is
+     listed in the bins it meets; a node tests the candidates of its own bin only: the work grows
+     with the nodes and the candidates, not with their product */
   {
-    PetscInt n = 0;
+    PetscInt  nb[3], nbin = 1, *boff, *bfill, *blist = NULL, n = 0;
+    PetscReal w[3];
+    for (int d = 0; d < 3; d++) {
+      const PetscReal ext = sd->ns ? box[2 * d + 1] - box[2 * d] : 0;
+      nb[d] = sd->ns ? (PetscInt)PetscMin(64, PetscMax(1, PetscFloorReal(ext / sd->search))) : 1;
+      w[d]  = nb[d] > 1 ? ext / nb[d] : PETSC_MAX_REAL;
+      nbin *= nb[d];
+    }
+    PetscCall(PetscCalloc2(nbin + 1, &boff, nbin + 1, &bfill));
+#define BIN_RANGE(lo, hi, d, a, b) \
+  do { \
+    a = nb[d] > 1 ? (PetscInt)PetscFloorReal(((lo) - box[2 * (d)]) / w[d]) : 0; \
+    b = nb[d] > 1 ? (PetscInt)PetscFloorReal(((hi) - box[2 * (d)]) / w[d]) : 0; \
+    a = PetscMax(a, 0); \
+    b = PetscMin(b, nb[d] - 1); \
+  } while (0)
+    for (int pass = 0; pass < 2; pass++) { /* count, then fill the bins' lists */
+      if (pass) {
+        for (PetscInt b = 0; b < nbin; b++) boff[b + 1] += boff[b];
+        PetscCall(PetscFree(blist));
+        PetscCall(PetscMalloc1(boff[nbin] + 1, &blist));
+      }
+      for (PetscInt c = 0; c < sd->nfc && sd->ns; c++) {
+        PetscReal fb[6];
+        PetscInt  lo[3], hi[3];
+        Box(sd->fcx + 12 * c, 4, fb);
+        for (int d = 0; d < 3; d++) BIN_RANGE(fb[2 * d] - sd->search, fb[2 * d + 1] + sd->search, d, lo[d], hi[d]);
+        for (PetscInt i = lo[0]; i <= hi[0]; i++)
+          for (PetscInt j = lo[1]; j <= hi[1]; j++)
+            for (PetscInt k = lo[2]; k <= hi[2]; k++) {
+              const PetscInt b = (i * nb[1] + j) * nb[2] + k;
+              if (pass) blist[boff[b] + bfill[b]++] = c;
+              else boff[b + 1]++;
+            }
+      }
+    }
     PetscCall(PetscFree(sd->cand));
     for (int pass = 0; pass < 2; pass++) {
       if (pass) PetscCall(PetscMalloc1(n + 1, &sd->cand));
       n = 0;
       for (PetscInt i = 0; i < sd->ns; i++) {
         PetscReal yb[6];
+        PetscInt  bi[3], b;
         Box(ys + 3 * i, 1, yb);
+        for (int d = 0; d < 3; d++) BIN_RANGE(yb[2 * d], yb[2 * d], d, bi[d], bi[d]);
+        b           = (bi[0] * nb[1] + bi[1]) * nb[2] + bi[2];
         sd->coff[i] = n;
-        for (PetscInt c = 0; c < sd->nfc; c++) {
-          PetscReal fb[6];
+        for (PetscInt q = boff[b]; q < boff[b + 1]; q++) { /* (in increasing candidate order) */
+          const PetscInt c = blist[q];
+          PetscReal      fb[6];
           Box(sd->fcx + 12 * c, 4, fb);
           if (!BoxesMeet(fb, yb, sd->search)) continue;
           if (pass) sd->cand[n] = c;
@@ -553,6 +596,9 @@ static PetscErrorCode SideCandidates(ContactPairs p, PairSide *sd, const PetscSc
       }
       sd->coff[sd->ns] = n;
     }
+#undef BIN_RANGE
+    PetscCall(PetscFree2(boff, bfill));
+    PetscCall(PetscFree(blist));
   }
   PetscCall(PetscFree(ys));
   PetscCall(PetscFree(boxes));
@@ -637,8 +683,10 @@ PetscErrorCode ContactPairsSeed(ContactPairs p, const PetscScalar *u, PetscBool 
   for (PetscInt s = 0; s < p->nside; s++) {
     PairSide *sd = &p->side[s];
     if (from_committed) sd->pen_prev = -1; /* (the augmentation starts) */
-    if (from_committed) PetscCall(SideCandidates(p, sd, u));
-    else PetscCall(SideRefresh(p, sd, u));
+    /* the candidates at the iterate: found again at every Newton iteration, so that a node sliding
+       far within a step finds the faces it reaches (fixed within the iteration: its residual,
+       line search and Jacobian see the same faces) */
+    PetscCall(SideCandidates(p, sd, u));
     for (PetscInt i = 0; i < sd->ns; i++) {
       double        y[3], t1[3], t2[3];
       NTSProjection pr;
