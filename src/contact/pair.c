@@ -1035,8 +1035,8 @@ PetscErrorCode ContactPairsChanges(ContactPairs p, PetscInt *nchange)
 
 /* checkpoint rows: per pass of a pair PAIR_CKPT doubles per owned vertex (zero where the vertex is
    not the pass's slave node): 1, status, face, xi (2), tT (2), t1 (3), has_frame, y (3), gap,
-   tN, f (3), fT (3), slip */
-#define PAIR_CKPT 23
+   tN, f (3), fT (3), slip, the pass's penalties' factor (the augmentation's growth) */
+#define PAIR_CKPT 24
 
 PetscInt ContactPairsCheckpointWidth(ContactPairs p) { return p ? PAIR_CKPT * p->nside : 0; }
 
@@ -1050,7 +1050,7 @@ PetscErrorCode ContactPairsCheckpointPack(ContactPairs p, PetscReal *rows)
     const PairSide *sd = &p->side[s];
     for (PetscInt i = 0; i < sd->ns; i++) {
       const PairState *t = &sd->st_c[i];
-      const PetscReal  v[PAIR_CKPT] = {1, (PetscReal)t->status, (PetscReal)t->face, t->xi[0], t->xi[1], t->tT[0], t->tT[1], t->t1[0], t->t1[1], t->t1[2], (PetscReal)t->has_frame, t->y[0], t->y[1], t->y[2], t->gap, t->tN, t->f[0], t->f[1], t->f[2], t->fT[0], t->fT[1], t->fT[2], t->slip};
+      const PetscReal  v[PAIR_CKPT] = {1, (PetscReal)t->status, (PetscReal)t->face, t->xi[0], t->xi[1], t->tT[0], t->tT[1], t->t1[0], t->t1[1], t->t1[2], (PetscReal)t->has_frame, t->y[0], t->y[1], t->y[2], t->gap, t->tN, t->f[0], t->f[1], t->f[2], t->fT[0], t->fT[1], t->fT[2], t->slip, sd->kscale};
       PetscCall(PetscArraycpy(rows + w * p->mesh->vrow[sd->sv[i]] + PAIR_CKPT * s, v, PAIR_CKPT));
     }
   }
@@ -1065,6 +1065,7 @@ PetscErrorCode ContactPairsCheckpointUnpack(ContactPairs p, const PetscReal *row
   PetscFunctionBeginUser;
   for (PetscInt s = 0; s < p->nside; s++) {
     PairSide *sd = &p->side[s];
+    PetscReal kc = 0;
     for (PetscInt i = 0; i < sd->ns; i++) {
       const PetscReal *d = rows + w * p->mesh->vrow[sd->sv[i]] + PAIR_CKPT * s;
       PairState       *t = &sd->st_c[i];
@@ -1088,7 +1089,11 @@ PetscErrorCode ContactPairsCheckpointUnpack(ContactPairs p, const PetscReal *row
       t->gap  = d[14];
       t->tN   = d[15];
       t->slip = d[22];
+      kc      = PetscMax(kc, d[23]);
     }
+    /* the penalties' factor (the same in all the pass's rows; a rank without its slave nodes takes it from the others) */
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &kc, 1, MPIU_REAL, MPIU_MAX, p->comm));
+    sd->kscale = kc > 0 ? kc : 1;
     PetscCall(PetscArraycpy(sd->st_t, sd->st_c, sd->ns));
     /* the master faces' committed positions: the committed displacements */
     for (PetscInt f = 0; f < sd->nfo; f++) FaceCorners(p->mesh, sd->fov + 4 * f, uc, sd->fox0 + 12 * f);
