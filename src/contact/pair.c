@@ -59,7 +59,8 @@ typedef struct {
   PetscReal  weight;    /* the penalties' share: 1/2 in each pass of a two-pass pair           */
   char       sset[ATRITO_NAME_LEN], mset[ATRITO_NAME_LEN];
   /* master faces of this rank's cells (roots) */
-  PetscInt   nfo, *fov, *foid, *fog; /* 4 nfo local vertices; 12 nfo ids (the first of each 12); 12 nfo global dofs */
+  PetscInt   nfo, *fov, *foid, *fog; /* 4 nfo local vertices; 12 nfo ids (of each 12: the face's, then its corners'
+                                        source vertices); 12 nfo global dofs */
   PetscReal *fox, *fox0, *fof;       /* 12 nfo: current and committed corner positions, forces   */
   PetscReal *fofc;                   /* 12 nfo: the forces on the corners in the committed state (the
                                         residual terms: minus the forces the slave nodes exert)     */
@@ -70,6 +71,7 @@ typedef struct {
   PetscReal  search;
   /* slave nodes owned here */
   PetscInt   ns, *sv, *sg;           /* local vertices; 3 ns global dofs (-1 constrained)     */
+  PetscInt  *ssrc;                   /* ns: their source vertex index (rank-independent)       */
   PetscReal *kn, *kt;
   PairState *st_c, *st_t;
   PetscReal *seed, *seedn;
@@ -321,6 +323,7 @@ static PetscErrorCode SideSetUp(ContactPairs p, PairSide *sd)
   PetscCall(PetscCalloc1(12 * nf + 1, &sd->fofc));
   for (PetscInt f = 0; f < nf; f++) {
     sd->foid[12 * f] = 6 * m->elem_src[fc[f] / 6] + fc[f] % 6;
+    for (int a = 0; a < 4; a++) sd->foid[12 * f + 1 + a] = m->node_src[sd->fov[4 * f + a]]; /* its corners */
     for (int a = 0; a < 4; a++) PetscCall(MeshVertexDofs(m, sd->fov[4 * f + a], sd->fog + 12 * f + 3 * a));
     FaceCorners(m, sd->fov + 4 * f, NULL, sd->fox0 + 12 * f);
     for (int k = 0; k < 12; k++) sd->fox[12 * f + k] = sd->fox0[12 * f + k];
@@ -363,11 +366,13 @@ static PetscErrorCode SideSetUp(ContactPairs p, PairSide *sd)
   PetscCall(PetscMalloc4(sd->ns + 1, &sd->sv, 3 * sd->ns + 1, &sd->sg, sd->ns + 1, &sd->kn, sd->ns + 1, &sd->kt));
   PetscCall(PetscCalloc4(sd->ns + 1, &sd->st_c, sd->ns + 1, &sd->st_t, 3 * sd->ns + 1, &sd->seed, 3 * sd->ns + 1, &sd->seedn));
   PetscCall(PetscCalloc3(sd->ns + 1, &sd->has_seed, sd->ns + 2, &sd->coff, sd->ns + 1, &sd->active_prev));
+  PetscCall(PetscMalloc1(sd->ns + 1, &sd->ssrc));
   sd->ns = 0;
   for (PetscInt v = 0; v < m->nv; v++)
     if (mark[v] && m->vowned[v]) {
       const PetscInt i = sd->ns++;
       sd->sv[i]        = v;
+      sd->ssrc[i]      = m->node_src[v];
       PetscCall(MeshVertexDofs(m, v, sd->sg + 3 * i));
       sd->st_c[i].face = -1;
       for (int k = 0; k < 3; k++) sd->st_c[i].y[k] = m->X[3 * v + k];
@@ -432,6 +437,7 @@ static PetscErrorCode SideDestroy(PairSide *sd)
   PetscCall(PetscFree3(sd->has_seed, sd->coff, sd->active_prev));
   PetscCall(PetscFree(sd->cand));
   PetscCall(PetscFree(sd->lam));
+  PetscCall(PetscFree(sd->ssrc));
   PetscFunctionReturn(0);
 }
 
@@ -474,7 +480,7 @@ static PetscBool BoxesMeet(const PetscReal a[6], const PetscReal b[6], PetscReal
 static PetscErrorCode SideCandidates(ContactPairs p, PairSide *sd, const PetscScalar *u)
 {
   const Mesh  *m = p->mesh;
-  PetscReal    box[6], *boxes, *ys;
+  PetscReal    box[6], obox[6], *boxes, *ys;
   PetscMPIInt *scount, *rcount, *sdisp, *rdisp, size = p->size;
   PetscInt    *sendf, *recvf, nsend = 0;
   PetscSFNode *remote;
@@ -487,6 +493,7 @@ static PetscErrorCode SideCandidates(ContactPairs p, PairSide *sd, const PetscSc
   PetscCall(PetscMalloc1(6 * size, &boxes));
   PetscCallMPI(MPI_Allgather(box, 6, MPIU_REAL, boxes, 6, MPIU_REAL, p->comm));
   PetscCall(PetscCalloc4(size, &scount, size, &rcount, size + 1, &sdisp, size + 1, &rdisp));
+  Box(sd->fox, 4 * sd->nfo, obox); /* the box of all the faces this rank owns: tested first */
   for (int pass = 0; pass < 2; pass++) {
     if (pass) {
       for (PetscMPIInt r = 0; r < size; r++) sdisp[r + 1] = sdisp[r] + scount[r];
@@ -496,6 +503,7 @@ static PetscErrorCode SideCandidates(ContactPairs p, PairSide *sd, const PetscSc
     }
     for (PetscMPIInt r = 0; r < size; r++) {
       if (boxes[6 * r] > boxes[6 * r + 1]) continue; /* no slave nodes there */
+      if (!sd->nfo || !BoxesMeet(obox, boxes + 6 * r, sd->search)) continue;
       for (PetscInt f = 0; f < sd->nfo; f++) {
         PetscReal fb[6];
         Box(sd->fox + 12 * f, 4, fb);
@@ -629,10 +637,12 @@ static PetscErrorCode SideRefresh(ContactPairs p, PairSide *sd, const PetscScala
    the face's width), on that face's extension: a node at the edge of a surface, which the bodies'
    equal lateral strains keep there to round-off, would otherwise enter and leave contact from one
    iterate to the next. A face the node lies behind by more than half the face's larger diagonal
-   is not a candidate (the node is at the body's other side). -1 if none. */
+   is not a candidate (the node is at the body's other side), nor is a face the node is a corner of.
+   -1 if none. */
 #define PAIR_EDGE_TOL 0.1
 static PetscInt PairNode(const PairSide *sd, PetscInt i, const double y[3], NTSProjection *best)
 {
+  const PetscInt self = sd->ssrc[i];
   PetscInt  bc = -1, oc = -1;
   PetscReal bd = PETSC_MAX_REAL, bo = PETSC_MAX_REAL;
   NTSProjection po;
@@ -643,6 +653,7 @@ static PetscInt PairNode(const PairSide *sd, PetscInt i, const double y[3], NTSP
     const double   xi0[2] = {0, 0};
     NTSProjection  pr;
     double         d = 0, o;
+    if (sd->fcid[12 * c + 1] == self || sd->fcid[12 * c + 2] == self || sd->fcid[12 * c + 3] == self || sd->fcid[12 * c + 4] == self) continue; /* its own face */
     if (NTSProject(4, y, (const double(*)[3])x, xi0, 1e-10, 0, &pr)) continue;
     { /* a node deeper behind the face than half its larger diagonal is on the body's other side */
       double d1 = 0, d2 = 0;
