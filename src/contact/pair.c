@@ -532,6 +532,7 @@ static PetscErrorCode SideCandidates(ContactPairs p, PairSide *sd, const PetscSc
   PetscCall(PetscSFCreate(p->comm, &sd->sf));
   PetscCall(PetscSFSetGraph(sd->sf, 12 * sd->nfo, 12 * sd->nfc, NULL, PETSC_COPY_VALUES, remote, PETSC_OWN_POINTER));
   PetscCall(PetscSFSetUp(sd->sf));
+  PetscCall(PetscInfo(NULL, "contact pair side %s -> %s: %" PetscInt_FMT " slave nodes, %" PetscInt_FMT " faces owned, %" PetscInt_FMT " candidate faces (%" PetscInt_FMT " from other ranks)\n", sd->sset, sd->mset, sd->ns, sd->nfo, sd->nfc, sd->nfc - (PetscInt)rcount[p->rank]));
   PetscCall(PetscSFBcastBegin(sd->sf, MPIU_INT, sd->foid, sd->fcid, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(sd->sf, MPIU_INT, sd->foid, sd->fcid, MPI_REPLACE));
   PetscCall(PetscSFBcastBegin(sd->sf, MPIU_INT, sd->fog, sd->fcg, MPI_REPLACE));
