@@ -9,7 +9,10 @@
 #   3. sliding: Coulomb's F_T = mu F_N for a block that slips on the other;
 #   4. restart on another number of ranks reproduces the uninterrupted run;
 #   5. Hertz between two elastic cylinders' worth (cases/pair_hertz.opts, plane strain): half-width
-#      and peak pressure within 2 % of the closed form (tests/checks/hertz_pair.py), 1 and 2 ranks.
+#      and peak pressure within 2 % of the closed form (tests/checks/hertz_pair.py), 1 and 2 ranks;
+#   6. the rigid limit: the seed benchmark with the punch and the die as elastic bodies 1e3 times
+#      the sheet's modulus (cases/hemisphere_bodies_frictionless.opts) against the rigid tools over
+#      the first 3 of its 15 steps (the whole study: scripts/rigid_limit.py, doc/notes/rigid-limit.md).
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -134,4 +137,17 @@ fm = fn[np.array([i in M for i in ids])].sum()
 e = abs(fm / fs - 1)
 print(("ok" if e < 1e-4 else "not ok") + f" - Hertz pair: the master surface's normal forces sum to {fm:.6f}, the slave's to {fs:.6f} (relative {e:.1e} < 1e-4)")
 sys.exit(0 if e < 1e-4 else 1)
+PY
+
+# 6. the rigid limit, the first 8 mm in the benchmark's increments of 2.67 mm
+atrito 1 rl_rigid -options_file cases/hemisphere_frictionless.opts -tool_punch_motion 0,0,8 -load_steps 3 -output_interval 0 &&
+  atrito 1 rl_bodies -options_file cases/hemisphere_bodies_frictionless.opts -bc_drive_values 0,0,8 -load_steps 3 -output_interval 0 &&
+  $PY - "$OUT/rl_rigid/contact.csv" "$OUT/rl_bodies/contact.csv" <<'PY'
+import csv, sys
+rig = [float(r["force_full"]) for r in csv.DictReader(open(sys.argv[1])) if r["tool"] == "punch"]
+bod = [4 * float(r["fz"]) for r in csv.DictReader(open(sys.argv[2])) if r["tool"] == "pp"]
+e = max(abs(b / a - 1) for a, b in zip(rig, bod))
+ok = len(rig) == len(bod) == 3 and e < 5e-3
+print(("ok" if ok else "not ok") + f" - rigid limit: punch force of elastic punch and die (1e3 E) against the rigid tools over {len(bod)} steps to 8 mm: largest difference {100 * e:.3f} % (< 0.5 %; the faceted punch's own)")
+sys.exit(0 if ok else 1)
 PY
