@@ -204,6 +204,7 @@ def patch_mesh(nu_upper):
     d.nset("lower_top", lo[:, :, -1].ravel())
     d.nset("upper_bottom", up[:, :, 0].ravel())
     d.nset("upper_top", up[:, :, -1].ravel())
+    d.nset("lower_mid", lo[:, :, 1].ravel())  # the lower block's mid-plane: no boundary faces (bad input of a master surface)
     d.nset("lower_xmin", lo[0].ravel())
     d.nset("lower_ymin", lo[:, 0].ravel())
     d.nset("upper_xmin", up[0].ravel())
