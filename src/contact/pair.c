@@ -1,5 +1,5 @@
 /* Contact between deformable bodies: pairs of a slave node set and a master surface
-   (include/contact_pair.h; doc/contact.md, "Contact between bodies").
+   (include/contact_pair.h; doc/contact-bodies.md).
 
    A slave node at x_s paired with master face F (corners x_1..x_4, bilinear) at its closest point
    xi contributes, with the kinematics of contact_nts.h (the gap g, the normal n, the slip ds
@@ -138,8 +138,8 @@ PetscErrorCode ContactPairsSetFromOptions(ContactPairs p)
   PetscBool set;
 
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, NULL, "Contact between deformable bodies", "doc/contact.md");
-  PetscCall(PetscOptionsStringArray("-pair_names", "Contact pairs between bodies of the mesh (each with -pair_<name>_slave and _master)", "doc/contact.md", names, &n, &set));
+  PetscOptionsBegin(comm, NULL, "Contact between deformable bodies", "doc/contact-bodies.md");
+  PetscCall(PetscOptionsStringArray("-pair_names", "Contact pairs between bodies of the mesh (each with -pair_<name>_slave and _master)", "doc/contact-bodies.md", names, &n, &set));
   PetscOptionsEnd();
   p->np = set ? n : 0;
   for (PetscInt k = 0; k < p->np; k++) {
@@ -161,31 +161,31 @@ PetscErrorCode ContactPairsSetFromOptions(ContactPairs p)
     s->search  = -1;
     char title[ATRITO_NAME_LEN + 8];
     PetscCall(PetscSNPrintf(title, sizeof(title), "Pair %s", s->name));
-    PetscOptionsBegin(comm, prefix, title, "doc/contact.md");
-    PetscCall(PetscOptionsString("-slave", "Node set of the slave nodes", "doc/contact.md", s->slave, s->slave, sizeof(s->slave), &hs));
-    PetscCall(PetscOptionsString("-master", "Node set of the master surface: the boundary faces whose four nodes lie in it", "doc/contact.md", s->master, s->master, sizeof(s->master), &hm));
-    PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient", "doc/contact.md", s->mu, &s->mu, NULL));
+    PetscOptionsBegin(comm, prefix, title, "doc/contact-bodies.md");
+    PetscCall(PetscOptionsString("-slave", "Node set of the slave nodes", "doc/contact-bodies.md", s->slave, s->slave, sizeof(s->slave), &hs));
+    PetscCall(PetscOptionsString("-master", "Node set of the master surface: the boundary faces whose four nodes lie in it", "doc/contact-bodies.md", s->master, s->master, sizeof(s->master), &hm));
+    PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient", "doc/contact-bodies.md", s->mu, &s->mu, NULL));
     PetscCall(PetscStrncpy(buf, "auto", sizeof(buf)));
-    PetscCall(PetscOptionsString("-penalty_normal", "Normal penalty K_N per node (force per length), or auto: factor * E * A / h per slave node (A its tributary area, h the element size normal to its faces)", "doc/contact.md", buf, buf, sizeof(buf), NULL));
+    PetscCall(PetscOptionsString("-penalty_normal", "Normal penalty K_N per node (force per length), or auto: factor * E * A / h per slave node (A its tributary area, h the element size normal to its faces)", "doc/contact-bodies.md", buf, buf, sizeof(buf), NULL));
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-pair_%s_penalty_normal", s->name));
     PetscCall(PenaltyOption(comm, opt, buf, &s->kauto, &s->kn));
     PetscCall(PetscStrncpy(buf, "auto", sizeof(buf)));
-    PetscCall(PetscOptionsString("-penalty_tangential", "Tangential penalty K_T per node, or auto: ratio * K_N", "doc/contact.md", buf, buf, sizeof(buf), NULL));
+    PetscCall(PetscOptionsString("-penalty_tangential", "Tangential penalty K_T per node, or auto: ratio * K_N", "doc/contact-bodies.md", buf, buf, sizeof(buf), NULL));
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-pair_%s_penalty_tangential", s->name));
     PetscCall(PenaltyOption(comm, opt, buf, &s->ktauto, &s->kt));
-    PetscCall(PetscOptionsReal("-penalty_factor", "With the automatic normal penalty: K_N = factor * E * A / h", "doc/contact.md", s->kfactor, &s->kfactor, NULL));
-    PetscCall(PetscOptionsReal("-penalty_ratio", "With the automatic tangential penalty: K_T = ratio * K_N", "doc/contact.md", s->kratio, &s->kratio, NULL));
-    PetscCall(PetscOptionsBool("-two_pass", "Symmetric treatment: also the master's nodes as slaves against the slave set's faces, each pass with half the penalty", "doc/contact.md", s->two_pass, &s->two_pass, NULL));
+    PetscCall(PetscOptionsReal("-penalty_factor", "With the automatic normal penalty: K_N = factor * E * A / h", "doc/contact-bodies.md", s->kfactor, &s->kfactor, NULL));
+    PetscCall(PetscOptionsReal("-penalty_ratio", "With the automatic tangential penalty: K_T = ratio * K_N", "doc/contact-bodies.md", s->kratio, &s->kratio, NULL));
+    PetscCall(PetscOptionsBool("-two_pass", "Symmetric treatment: also the master's nodes as slaves against the slave set's faces, each pass with half the penalty", "doc/contact-bodies.md", s->two_pass, &s->two_pass, NULL));
     s->aug      = s->two_pass;
     s->aug_tol  = -1e-3;
     s->aug_mtol = 0.2;
-    PetscCall(PetscOptionsBool("-augmented", "Augmented Lagrangian: Uzawa updates of the slave nodes' multipliers between Newton solves until the penetration and the stick slip are below -pair_<p>_augmented_tol (default with -pair_<p>_two_pass, whose constraints must hold exactly)", "doc/contact.md", s->aug, &s->aug, NULL));
-    PetscCall(PetscOptionsReal("-augmented_tol", "Augmented Lagrangian: the largest penetration and stick slip per step accepted, a length (default 1e-3 times the smallest slave element size)", "doc/contact.md", PetscAbsReal(s->aug_tol), &s->aug_tol, &ht));
+    PetscCall(PetscOptionsBool("-augmented", "Augmented Lagrangian: Uzawa updates of the slave nodes' multipliers between Newton solves until the penetration and the stick slip are below -pair_<p>_augmented_tol (default with -pair_<p>_two_pass, whose constraints must hold exactly)", "doc/contact-bodies.md", s->aug, &s->aug, NULL));
+    PetscCall(PetscOptionsReal("-augmented_tol", "Augmented Lagrangian: the largest penetration and stick slip per step accepted, a length (default 1e-3 times the smallest slave element size)", "doc/contact-bodies.md", PetscAbsReal(s->aug_tol), &s->aug_tol, &ht));
     if (!ht) s->aug_tol = -1e-3; /* (relative) */
     PetscCheck(!ht || (s->aug_tol > 0 && PetscIsNormalReal(s->aug_tol)), comm, PETSC_ERR_USER_INPUT, "-pair_%s_augmented_tol %g must be positive", s->name, (double)s->aug_tol);
-    PetscCall(PetscOptionsReal("-augmented_multiplier_tol", "Augmented Lagrangian: the largest change of a multiplier accepted, relative to the largest multiplier", "doc/contact.md", s->aug_mtol, &s->aug_mtol, NULL));
+    PetscCall(PetscOptionsReal("-augmented_multiplier_tol", "Augmented Lagrangian: the largest change of a multiplier accepted, relative to the largest multiplier", "doc/contact-bodies.md", s->aug_mtol, &s->aug_mtol, NULL));
     PetscCheck(s->aug_mtol > 0 && PetscIsNormalReal(s->aug_mtol), comm, PETSC_ERR_USER_INPUT, "-pair_%s_augmented_multiplier_tol %g must be positive", s->name, (double)s->aug_mtol);
-    PetscCall(PetscOptionsReal("-search_distance", "Candidate faces of a slave node: those whose box lies within this distance of it at the start of each Newton iteration (default: twice the largest master face's diagonal)", "doc/contact.md", s->search, &s->search, NULL));
+    PetscCall(PetscOptionsReal("-search_distance", "Candidate faces of a slave node: those whose box lies within this distance of it at the start of each Newton iteration (default: twice the largest master face's diagonal)", "doc/contact-bodies.md", s->search, &s->search, NULL));
     PetscOptionsEnd();
     PetscCheck(hs && s->slave[0], comm, PETSC_ERR_USER_INPUT, "-pair_%s_slave: the pair needs a node set of slave nodes", s->name);
     PetscCheck(hm && s->master[0], comm, PETSC_ERR_USER_INPUT, "-pair_%s_master: the pair needs a node set of master faces", s->name);

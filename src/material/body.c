@@ -11,8 +11,8 @@ PetscErrorCode BodiesSetFromOptions(MPI_Comm comm, Bodies *b)
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(b, sizeof(*b)));
   b->comm = comm;
-  PetscOptionsBegin(comm, NULL, "Bodies", "doc/materials.md");
-  PetscCall(PetscOptionsStringArray("-body_names", "Parts of the mesh with materials of their own, each an element set (-body_<name>_set) with the material options -body_<name>_material_...; the other cells take -material_...", "doc/materials.md", names, &n, &set));
+  PetscOptionsBegin(comm, NULL, "Bodies", "doc/contact-bodies.md");
+  PetscCall(PetscOptionsStringArray("-body_names", "Parts of the mesh with materials of their own, each an element set (-body_<name>_set) with the material options -body_<name>_material_...; the other cells take -material_...", "doc/contact-bodies.md", names, &n, &set));
   PetscOptionsEnd();
   b->n = set ? n : 0;
   for (PetscInt k = 0; k < b->n; k++) {
@@ -28,8 +28,8 @@ PetscErrorCode BodiesSetFromOptions(MPI_Comm comm, Bodies *b)
     }
     PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "body_%s_", b->name[k]));
     PetscCall(PetscSNPrintf(title, sizeof(title), "Body %s", b->name[k]));
-    PetscOptionsBegin(comm, prefix, title, "doc/materials.md");
-    PetscCall(PetscOptionsString("-set", "Element set of the body's cells", "doc/materials.md", b->set[k], b->set[k], sizeof(b->set[k]), &has));
+    PetscOptionsBegin(comm, prefix, title, "doc/contact-bodies.md");
+    PetscCall(PetscOptionsString("-set", "Element set of the body's cells", "doc/contact-bodies.md", b->set[k], b->set[k], sizeof(b->set[k]), &has));
     PetscOptionsEnd();
     PetscCheck(has && b->set[k][0], comm, PETSC_ERR_USER_INPUT, "-body_%s_set: the body needs an element set", b->name[k]);
     PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "body_%s_material_", b->name[k]));
