@@ -85,6 +85,25 @@ for name, cells, ex in (("lower (E 1000)", vm[:32], exact[0]), ("upper (E 1e5)",
 sys.exit(1 if fail else 0)
 PY
 
+# 1c. bodies from a Gmsh file's physical volumes (tests/data/two_bodies.msh: two hexahedra,
+# "soft" and "stiff"): E 1000 by default with the body "stiff" at 2000, or E 2000 by default with
+# the body "soft" at 1000, give the same run; the uniform E 1000 another
+G="-mesh_file tests/data/two_bodies.msh -bc_names fix,pull -bc_fix_set left -bc_pull_set right -bc_fix_components x,y,z -bc_pull_components x -bc_pull_values 0.0002 -load_steps 1 -output_interval 0 -material_hardening linear -material_yield 1e9"
+EL="-material_hardening linear -material_yield 1e9"
+# shellcheck disable=SC2086
+atrito 1 gmsh_a $G -material_E 1000 -body_names b -body_b_set stiff -body_b_material_E 2000 $(echo $EL | sed 's/-material/-body_b_material/g') &&
+  atrito 2 gmsh_b $G -material_E 2000 -body_names b -body_b_set soft -body_b_material_E 1000 $(echo $EL | sed 's/-material/-body_b_material/g') &&
+  atrito 1 gmsh_u $G -material_E 1000 && {
+  compare "$OUT/gmsh_a/history.csv" "$OUT/gmsh_b/history.csv" 10 "bodies from Gmsh physical volumes: the stiff one set, or the soft one (np=2), the same run"
+  $PY - "$OUT/gmsh_a/history.csv" "$OUT/gmsh_u/history.csv" <<'PY'
+import csv, sys
+a, u = (float(list(csv.DictReader(open(f)))[-1]["pull_fx"]) for f in sys.argv[1:3])
+ok = a / u > 1.2
+print(("ok" if ok else "not ok") + f" - bodies from Gmsh physical volumes: the stiff body raises the pull's reaction {a / u:.4f} times (> 1.2) over the uniform material")
+sys.exit(0 if ok else 1)
+PY
+}
+
 # 2. the tangent
 # shellcheck disable=SC2086
 atrito 1 jac0 $SLIDE -pair_p_friction 0 -snes_test_jacobian && pycheck snes_test_jacobian "$OUT/jac0.log" 6 1e-6 "contact pair without friction"

@@ -17,7 +17,9 @@ static const PetscInt hex_plex_to_std[8] = {0, 3, 2, 1, 4, 5, 6, 7};
 
 /* Gmsh file through DMPlex's reader, converted to plain arrays. Every label (physical group)
    becomes a node set holding the vertices of its points' closures: named after the label, with
-   "_<value>" appended when the label has several values; blanks become underscores. */
+   "_<value>" appended when the label has several values; blanks become underscores. A group that
+   holds cells (a physical volume) also becomes an element set of those cells, of the same name
+   (MeshCreate then calls it "<name>_elements"; -body_<b>_set finds it by either name). */
 static PetscErrorCode MeshDataReadGmsh(const char *file, MeshData *m)
 {
   DM              dm;
@@ -100,16 +102,21 @@ static PetscErrorCode MeshDataReadGmsh(const char *file, MeshData *m)
     for (PetscInt iv = 0; iv < nvals; iv++) {
       IS              pis;
       const PetscInt *pts;
-      PetscInt        np, nmark = 0;
-      PetscBool      *mark;
+      PetscInt        np, nmark = 0, ncell = 0;
+      PetscBool      *mark, *cmark;
       MeshSet        *s;
       PetscCall(PetscCalloc1(m->nv, &mark));
+      PetscCall(PetscCalloc1(m->ne, &cmark));
       PetscCall(DMLabelGetStratumIS(label, vals[iv], &pis));
       if (pis) {
         PetscCall(ISGetLocalSize(pis, &np));
         PetscCall(ISGetIndices(pis, &pts));
         for (PetscInt ip = 0; ip < np; ip++) {
           PetscInt *cl = NULL, ncl;
+          if (pts[ip] >= cStart && pts[ip] < cEnd && !cmark[pts[ip] - cStart]) {
+            cmark[pts[ip] - cStart] = PETSC_TRUE;
+            ncell++;
+          }
           PetscCall(DMPlexGetTransitiveClosure(dm, pts[ip], PETSC_TRUE, &ncl, &cl));
           for (PetscInt i = 0; i < ncl; i++)
             if (cl[2 * i] >= vStart && cl[2 * i] < vEnd) mark[cl[2 * i] - vStart] = PETSC_TRUE;
@@ -131,6 +138,19 @@ static PetscErrorCode MeshDataReadGmsh(const char *file, MeshData *m)
       for (PetscInt v = 0; v < m->nv; v++)
         if (mark[v]) s->idx[nmark++] = v;
       PetscCall(PetscFree(mark));
+      if (ncell) { /* a physical volume: its cells as an element set */
+        MeshSet *es;
+        PetscCall(PetscRealloc(sizeof(MeshSet) * (m->nelset + 1), &m->elsets));
+        es = &m->elsets[m->nelset++];
+        PetscCall(PetscMemzero(es, sizeof(*es)));
+        PetscCall(PetscStrncpy(es->name, s->name, sizeof(es->name)));
+        es->n = ncell;
+        PetscCall(PetscMalloc1(ncell, &es->idx));
+        ncell = 0;
+        for (PetscInt c = 0; c < m->ne; c++)
+          if (cmark[c]) es->idx[ncell++] = c;
+      }
+      PetscCall(PetscFree(cmark));
     }
     PetscCall(ISRestoreIndices(vis, &vals));
     PetscCall(ISDestroy(&vis));
