@@ -82,6 +82,7 @@ typedef struct {
                                         lN 0 without the augmentation; lT the committed tangential
                                         pressure at the step's start, Uzawa's updates after      */
   PetscReal  hmin;                   /* smallest slave element size normal to its faces (all ranks) */
+  PetscBool  noE;                    /* a slave face's material has no Young's modulus (this rank) */
   PetscReal  tol;                    /* the augmentation's tolerance (a length)                  */
   PetscReal  kscale;                 /* the penalties' factor: grown by the augmentation where an
                                         update removes too little of the penetration; kept for the
@@ -284,7 +285,9 @@ static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s
     for (int j = 0; j < 4; j++) {
       PetscInt off;
       PetscCall(PetscSectionGetOffset(ls, m->vstart + cv[hexface[k][j]], &off));
-      a[off] += h > 0 ? (p->Ecell ? p->Ecell[c] : p->E) * ar[j] / h : 0;
+      const PetscReal Ef = p->Ecell ? p->Ecell[c] : p->E;
+      if (!(Ef > 0)) sd->noE = PETSC_TRUE; /* a material without a modulus (a UMAT) */
+      a[off] += h > 0 ? Ef * ar[j] / h : 0;
     }
   }
   PetscCall(VecRestoreArray(kl, &a));
@@ -395,6 +398,9 @@ static PetscErrorCode SideSetUp(ContactPairs p, PairSide *sd)
     }
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmin, 1, MPIU_REAL, MPIU_MIN, p->comm));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmax, 1, MPIU_REAL, MPIU_MAX, p->comm));
+    PetscInt noE = (s->kauto && sd->noE) ? 1 : 0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &noE, 1, MPIU_INT, MPI_MAX, p->comm));
+    PetscCheck(!noE, p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_penalty_normal auto: the material of a slave face has no Young's modulus (a user material); give -pair_%s_penalty_normal a value", s->name, s->name);
     PetscCheck(kmin > 0, p->comm, PETSC_ERR_USER_INPUT, "-pair_%s_slave %s: a slave node lies on no boundary face of its set, so it has no automatic penalty (the set must be a surface of the body)", s->name, sd->sset);
     PetscCall(PetscPrintf(p->comm, "contact pair %s%s: %" PetscInt_FMT " slave nodes (set '%s') on %" PetscInt_FMT " master faces (set '%s'), K_N per node %g to %g%s, mu %g, search distance %g", s->name, s->two_pass ? (sd->weight < 1 && !strcmp(sd->sset, s->master) ? " (second pass)" : " (first pass)") : "", g[1], sd->sset, g[0], sd->mset, (double)kmin, (double)kmax, s->kauto ? " (automatic)" : "", (double)s->mu, (double)sd->search));
     if (s->aug) PetscCall(PetscPrintf(p->comm, ", augmented Lagrangian to %g", (double)sd->tol));
