@@ -132,6 +132,8 @@ PetscErrorCode ContactCommit(Contact c, PetscReal lambda);
    (on all ranks). The multipliers are held fixed within a Newton solve; they start every step and
    every retry from the committed ones (ContactSeed from_committed) and are committed with it. */
 PetscBool      ContactAugmented(Contact c);
+/* the tools' augmentation alone (-contact_augmented with tools): it sets other defaults */
+PetscBool      ContactToolsAugmented(Contact c);
 PetscInt       ContactAugmentedMax(Contact c);
 PetscErrorCode ContactAugment(Contact c, PetscBool inexact, PetscBool *converged, PetscBool *held, PetscReal *maxpen, PetscReal *dlambda);
 /* the start of a step's augmentation, after ContactSeed from the committed state: the penalties'

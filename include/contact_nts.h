@@ -48,6 +48,15 @@ typedef struct {
         a local minimum on the extension (not necessarily the global one, nor on the face). */
 int NTSProject(int nen, const double xs[3], const double xm[][3], const double xi0[2], double tol, int derivs, NTSProjection *p);
 
+/* Projection along the normal field interpolated from corner normals nbar[nen] (unit or not; the
+   smoothed master surface's: each the mean of the faces' normals around the corner): the point
+   x(xi) of the face and the gap g with x_s = x(xi) + g n(xi), n = s/|s|, s = sum_a N_a nbar_a.
+   Newton on (xi, g) from xi0 (NULL: the centroid). The corner normals are held fixed in the
+   derivatives (dxi, dg, dn with respect to X = (x_s, x_1..x_nen) only). The map is continuous
+   across two faces that share an edge and its corner normals. Returns as NTSProject; p->a holds
+   the face's tangents, p->n the field's normal. */
+int NTSProjectNormal(int nen, const double xs[3], const double xm[][3], const double nbar[][3], const double xi0[2], double tol, int derivs, NTSProjection *p);
+
 /* Slip increment of the slave relative to the master's material point now under it:
    ds = (x_s - x_s0) - sum_a N_a(xi) (x_a - x_a0), and when dds is not NULL (then p must come
    from NTSProject with derivs) d(ds)/dX = [I, -N_1 I, ..., -N_nen I]

@@ -281,5 +281,92 @@ int main(void)
     TU_CHECK(bad == 0 && rmax < 1e-12, "far starts (|xi0| up to 25) on a hyperbolic paraboloid, 500 runs: %d converged (residual <= %.1e), %d reported failure, %d with NaN", conv, rmax, fail, bad);
     TU_CHECK(nearconv >= 0.95 * near, "hyperbolic paraboloid, starts with |xi0| <= 4: %d of %d converge (plain Newton cycles in about 30%% of them)", nearconv, near);
   }
+  /* projection along an interpolated normal field (NTSProjectNormal): its derivatives against
+     finite differences with the corner normals held, the flat face's closed form, and the
+     continuity across a shared edge */
+  {
+    double worst[3] = {0, 0, 0};
+    int    fails    = 0;
+    for (int trial = 0; trial < 20; trial++) {
+      double xm[4][3], nb[4][3], X[15];
+      NTSProjection p;
+      for (int k = 0; k < 4; k++) {
+        const double c[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        xm[k][0] = c[k][0] + 0.1 * urand();
+        xm[k][1] = c[k][1] + 0.1 * urand();
+        xm[k][2] = 0.15 * urand();
+        nb[k][0] = 0.2 * urand();
+        nb[k][1] = 0.2 * urand();
+        nb[k][2] = 1;
+      }
+      X[0] = 0.5 + 0.2 * urand();
+      X[1] = 0.5 + 0.2 * urand();
+      X[2] = (trial % 2 ? -0.1 : 0.3) + 0.05 * urand();
+      memcpy(X + 3, xm, sizeof xm);
+      if (NTSProjectNormal(4, X, (const double(*)[3])(X + 3), (const double(*)[3])nb, NULL, 1e-10, 1, &p)) {
+        fails++;
+        continue;
+      }
+      {
+        double r[3], e = 0;
+        for (int i = 0; i < 3; i++) r[i] = X[i] - p.x[i] - p.g * p.n[i];
+        e = norm3(r);
+        worst[2] = fmax(worst[2], e);
+      }
+      for (int c = 0; c < 15; c++) {
+        const double  h = 1e-6;
+        double        Xp[15], Xm[15];
+        NTSProjection pp, pm;
+        memcpy(Xp, X, sizeof Xp);
+        memcpy(Xm, X, sizeof Xm);
+        Xp[c] += h;
+        Xm[c] -= h;
+        if (NTSProjectNormal(4, Xp, (const double(*)[3])(Xp + 3), (const double(*)[3])nb, p.xi, 1e-10, 0, &pp) || NTSProjectNormal(4, Xm, (const double(*)[3])(Xm + 3), (const double(*)[3])nb, p.xi, 1e-10, 0, &pm)) {
+          fails++;
+          continue;
+        }
+        for (int a = 0; a < 2; a++) worst[0] = fmax(worst[0], fabs((pp.xi[a] - pm.xi[a]) / (2 * h) - p.dxi[15 * a + c]));
+        worst[0] = fmax(worst[0], fabs((pp.g - pm.g) / (2 * h) - p.dg[c]));
+        for (int i = 0; i < 3; i++) worst[1] = fmax(worst[1], fabs((pp.n[i] - pm.n[i]) / (2 * h) - p.dn[15 * i + c]));
+      }
+    }
+    TU_CHECK(fails == 0 && worst[2] < 1e-12, "normal-field projection, 20 warped quads with tilted corner normals: x_s = x + g n to %.1e", worst[2]);
+    TU_CHECK(fails == 0 && worst[0] < 1e-6, "normal-field projection: dxi/dX and dg/dX (corner normals held) vs finite differences, error %.1e", worst[0]);
+    TU_CHECK(fails == 0 && worst[1] < 1e-6, "normal-field projection: dn/dX vs finite differences, error %.1e", worst[1]);
+  }
+  {
+    /* flat face, the face's own normal at every corner: the closest point and the face's gap */
+    const double  xm[4][3] = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}, nb[4][3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}}, xs[3] = {1.5, 0.5, -0.3};
+    NTSProjection p;
+    const int     rc = NTSProjectNormal(4, xs, xm, nb, NULL, 1e-10, 1, &p);
+    TU_CHECK(rc == 0 && fabs(p.xi[0] - 0.5) < 1e-14 && fabs(p.xi[1] + 0.5) < 1e-14 && fabs(p.g + 0.3) < 1e-14 && p.inside, "normal-field projection, flat face and its normal: xi (%g, %g), g %g (closed form 0.5, -0.5, -0.3)", p.xi[0], p.xi[1], p.g);
+  }
+  {
+    /* two faces meeting at an angle along the edge x = 1, the shared corners' normal the mean of
+       the two faces': a point projecting onto the edge from either face gives the same x, g, n */
+    const double  A[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, B[4][3] = {{1, 0, 0}, {2, 0, 0.3}, {2, 1, 0.3}, {1, 1, 0}};
+    const double  nA[3] = {0, 0, 1}, nBf[3] = {-0.3 / sqrt(1.09), 0, 1 / sqrt(1.09)};
+    double        ne[3], nbA[4][3], nbB[4][3], xs[3];
+    NTSProjection pa, pb;
+    for (int i = 0; i < 3; i++) ne[i] = 0.5 * (nA[i] + nBf[i]);
+    for (int i = 0; i < 3; i++) {
+      nbA[0][i] = nbA[3][i] = nA[i];
+      nbA[1][i] = nbA[2][i] = ne[i];
+      nbB[0][i] = nbB[3][i] = ne[i];
+      nbB[1][i] = nbB[2][i] = nBf[i];
+    }
+    /* a point on the normal at the edge's middle */
+    {
+      const double nn = norm3(ne);
+      for (int i = 0; i < 3; i++) xs[i] = (i == 0 ? 1.0 : (i == 1 ? 0.5 : 0.0)) + 0.2 * ne[i] / nn;
+    }
+    const int ra = NTSProjectNormal(4, xs, A, nbA, NULL, 1e-10, 0, &pa), rb = NTSProjectNormal(4, xs, B, nbB, NULL, 1e-10, 0, &pb);
+    double    dx = 0, dn = 0;
+    for (int i = 0; i < 3; i++) {
+      dx = fmax(dx, fabs(pa.x[i] - pb.x[i]));
+      dn = fmax(dn, fabs(pa.n[i] - pb.n[i]));
+    }
+    TU_CHECK(ra == 0 && rb == 0 && dx < 1e-13 && dn < 1e-13 && fabs(pa.g - pb.g) < 1e-13 && fabs(pa.xi[0] - 1) < 1e-12 && fabs(pb.xi[0] + 1) < 1e-12, "normal-field projection across a 17-degree edge: both faces give the same point, gap and normal (%.1e, %.1e, %.1e)", dx, fabs(pa.g - pb.g), dn);
+  }
   TU_RETURN();
 }

@@ -1705,6 +1705,7 @@ PetscErrorCode ContactCommit(Contact contact, PetscReal lambda)
 }
 
 PetscBool ContactAugmented(Contact contact) { return ((contact->aug && contact->ntools) || ContactPairsAugmented(contact->pairs)) ? PETSC_TRUE : PETSC_FALSE; }
+PetscBool ContactToolsAugmented(Contact contact) { return (contact->aug && contact->ntools) ? PETSC_TRUE : PETSC_FALSE; }
 PetscInt  ContactAugmentedMax(Contact contact) { return contact->aug_max; }
 
 /* One Uzawa update from the trial state of the last evaluation (the converged Newton solution at

@@ -195,3 +195,118 @@ void NTSChord(const NTSProjection *p, const double xm[][3], double t[3])
   Shape(p->nen, xm, xi, N, dN, x, a);
   for (int i = 0; i < 3; i++) t[i] = x[i] - p->x[i];
 }
+
+/* s(xi) = sum_a N_a nbar_a, n = s/|s|, and n_,alpha = (I - n n^T) s_,alpha / |s|; returns 1 if |s| ~ 0 */
+static int NormalField(int nen, const double nb[][3], const double N[4], const double dN[4][2], double n[3], double dn[2][3])
+{
+  double s[3] = {0, 0, 0}, ds[2][3] = {{0, 0, 0}, {0, 0, 0}}, ns;
+  for (int k = 0; k < nen; k++)
+    for (int i = 0; i < 3; i++) {
+      s[i] += N[k] * nb[k][i];
+      ds[0][i] += dN[k][0] * nb[k][i];
+      ds[1][i] += dN[k][1] * nb[k][i];
+    }
+  ns = sqrt(dot(s, s));
+  if (!(ns > 1e-12)) return 1;
+  for (int i = 0; i < 3; i++) n[i] = s[i] / ns;
+  for (int al = 0; al < 2; al++) {
+    const double c = dot(n, ds[al]);
+    for (int i = 0; i < 3; i++) dn[al][i] = (ds[al][i] - c * n[i]) / ns;
+  }
+  return 0;
+}
+
+/* 3x3 inverse (row-major); returns 1 when singular relative to the entries' scale */
+static int Inverse3(const double A[9], double B[9])
+{
+  const double det = A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) + A[2] * (A[3] * A[7] - A[4] * A[6]);
+  double       sc  = 0;
+  for (int k = 0; k < 9; k++) sc = fmax(sc, fabs(A[k]));
+  if (!(fabs(det) > 1e-14 * sc * sc * sc)) return 1;
+  B[0] = (A[4] * A[8] - A[5] * A[7]) / det;
+  B[1] = (A[2] * A[7] - A[1] * A[8]) / det;
+  B[2] = (A[1] * A[5] - A[2] * A[4]) / det;
+  B[3] = (A[5] * A[6] - A[3] * A[8]) / det;
+  B[4] = (A[0] * A[8] - A[2] * A[6]) / det;
+  B[5] = (A[2] * A[3] - A[0] * A[5]) / det;
+  B[6] = (A[3] * A[7] - A[4] * A[6]) / det;
+  B[7] = (A[1] * A[6] - A[0] * A[7]) / det;
+  B[8] = (A[0] * A[4] - A[1] * A[3]) / det;
+  return 0;
+}
+
+/* Projection along the interpolated normal field: F(xi, g) = x_s - x(xi) - g n(xi) = 0, three
+   equations in (xi_1, xi_2, g), Newton with dF/d(xi_beta, g) = [-a_beta - g n_,beta | -n]. The
+   corner normals nbar are data (fixed: the derivatives below hold them constant), so
+   dF/dx_s = I, dF/dx_a = -N_a I, and by the implicit function theorem
+   d(xi, g)/dX = -A^-1 [I, -N_1 I, ..., -N_nen I],  A = dF/d(xi, g);
+   dn/dX = n_,beta dxi_beta/dX. The map is continuous across faces that share an edge and its
+   corner normals: a node does not jump where two faces meet at an angle. */
+int NTSProjectNormal(int nen, const double xs[3], const double xm[][3], const double nbar[][3], const double xi0[2], double tol, int derivs, NTSProjection *p)
+{
+  double n[3], dn[2][3], d[3], A[9], Ai[9], size = 0;
+
+  if (nen != 3 && nen != 4) return -1;
+  memset(p, 0, sizeof(*p));
+  p->nen   = nen;
+  p->ncomp = 3 + 3 * nen;
+  if (xi0) {
+    p->xi[0] = xi0[0];
+    p->xi[1] = xi0[1];
+  } else p->xi[0] = p->xi[1] = nen == 3 ? 1.0 / 3 : 0;
+  for (int k = 1; k < nen; k++) {
+    double e[3];
+    for (int i = 0; i < 3; i++) e[i] = xm[k][i] - xm[0][i];
+    size = fmax(size, sqrt(dot(e, e)));
+  }
+  Shape(nen, xm, p->xi, p->N, p->dN, p->x, p->a);
+  if (NormalField(nen, nbar, p->N, p->dN, n, dn)) return Fail(p, 1);
+  for (int i = 0; i < 3; i++) d[i] = xs[i] - p->x[i];
+  p->g = dot(d, n); /* the start of g: the distance along the start's normal */
+  for (int it = 0;; it++) {
+    double F[3], step[3], st = 0;
+    for (int i = 0; i < 3; i++) F[i] = xs[i] - p->x[i] - p->g * n[i];
+    for (int i = 0; i < 3; i++) {
+      A[3 * i]     = -p->a[0][i] - p->g * dn[0][i];
+      A[3 * i + 1] = -p->a[1][i] - p->g * dn[1][i];
+      A[3 * i + 2] = -n[i];
+    }
+    if (Inverse3(A, Ai)) return Fail(p, 1);
+    for (int i = 0; i < 3; i++) step[i] = -(Ai[3 * i] * F[0] + Ai[3 * i + 1] * F[1] + Ai[3 * i + 2] * F[2]);
+    {
+      const double l = sqrt(step[0] * step[0] + step[1] * step[1]);
+      const double c = l > 1 ? 1 / l : 1; /* at most 1 in the parameters */
+      for (int i = 0; i < 3; i++) step[i] *= c;
+      st = l * c;
+    }
+    p->xi[0] += step[0];
+    p->xi[1] += step[1];
+    p->g += step[2];
+    Shape(nen, xm, p->xi, p->N, p->dN, p->x, p->a);
+    if (NormalField(nen, nbar, p->N, p->dN, n, dn)) return Fail(p, 1);
+    if (st < 1e-13 && fabs(step[2]) <= 1e-13 * (size + fabs(p->g))) break;
+    if (it >= NTS_MAXIT) return Fail(p, 2);
+  }
+  for (int i = 0; i < 3; i++) {
+    p->n[i] = n[i];
+    A[3 * i]     = -p->a[0][i] - p->g * dn[0][i];
+    A[3 * i + 1] = -p->a[1][i] - p->g * dn[1][i];
+    A[3 * i + 2] = -n[i];
+  }
+  if (Inverse3(A, Ai)) return Fail(p, 1);
+  if (nen == 3) p->inside = p->xi[0] >= -tol && p->xi[1] >= -tol && p->xi[0] + p->xi[1] <= 1 + tol;
+  else p->inside = fabs(p->xi[0]) <= 1 + tol && fabs(p->xi[1]) <= 1 + tol;
+  if (!derivs) return 0;
+  /* d(xi, g)/dX = -Ai dF/dX: column block of node k is -Ai c_k with c_0 = 1, c_a = -N_a */
+  for (int k = 0; k <= nen; k++) {
+    const double c = k == 0 ? 1.0 : -p->N[k - 1];
+    for (int j = 0; j < 3; j++) {
+      const int col = 3 * k + j;
+      p->dxi[col]                = -c * Ai[j];
+      p->dxi[p->ncomp + col]     = -c * Ai[3 + j];
+      p->dg[col]                 = -c * Ai[6 + j];
+      for (int i = 0; i < 3; i++) p->dn[p->ncomp * i + col] = dn[0][i] * p->dxi[col] + dn[1][i] * p->dxi[p->ncomp + col];
+    }
+  }
+  return 0;
+}

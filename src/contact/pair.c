@@ -35,6 +35,9 @@ typedef struct {
   char      name[ATRITO_NAME_LEN], slave[ATRITO_NAME_LEN], master[ATRITO_NAME_LEN];
   PetscReal mu, kn, kt, kfactor, kratio, search;
   PetscBool kauto, ktauto, two_pass;
+  PetscBool smooth;         /* the master's normal interpolated from its corners' mean normals    */
+  PetscReal smooth_tol;     /* the corners' normals at the solution against those its last Newton
+                               iteration held: a larger change makes another Newton solve        */
   PetscBool aug;            /* augmented Lagrangian (Uzawa updates between Newton solves)          */
   PetscReal aug_tol, aug_mtol; /* penetration and stick slip accepted (< 0: relative, times the slave
                                element size); the multipliers' change, relative to the largest    */
@@ -56,6 +59,7 @@ typedef struct {
 /* one pass of a pair: its slave nodes against its master faces */
 typedef struct {
   PetscInt   spec;
+  PetscBool  smooth;    /* its pair's -pair_<p>_smooth                                          */
   PetscReal  weight;    /* the penalties' share: 1/2 in each pass of a two-pass pair           */
   char       sset[ATRITO_NAME_LEN], mset[ATRITO_NAME_LEN];
   /* master faces of this rank's cells (roots) */
@@ -67,6 +71,7 @@ typedef struct {
   /* candidate faces (leaves) */
   PetscInt   nfc, *fcid, *fcg;
   PetscReal *fcx, *fcx0, *fcf;
+  PetscReal *fonb, *fcnb;            /* 12 nfo, 12 nfc: the corners' normals (-pair_<p>_smooth)  */
   PetscSF    sf;
   PetscReal  search;
   /* slave nodes owned here */
@@ -177,6 +182,11 @@ PetscErrorCode ContactPairsSetFromOptions(ContactPairs p)
     PetscCall(PetscOptionsReal("-penalty_factor", "With the automatic normal penalty: K_N = factor * E * A / h", "doc/contact-bodies.md", s->kfactor, &s->kfactor, NULL));
     PetscCall(PetscOptionsReal("-penalty_ratio", "With the automatic tangential penalty: K_T = ratio * K_N", "doc/contact-bodies.md", s->kratio, &s->kratio, NULL));
     PetscCall(PetscOptionsBool("-two_pass", "Symmetric treatment: also the master's nodes as slaves against the slave set's faces, each pass with half the penalty", "doc/contact-bodies.md", s->two_pass, &s->two_pass, NULL));
+    s->smooth = PETSC_FALSE;
+    PetscCall(PetscOptionsBool("-smooth", "Experimental: the master surface's normal interpolated from its corners' normals (each the mean of the master faces' around it, held within a Newton iteration), the slave node projected along it: no jump where two faces meet at an angle (default: each face's own normal, the closest point)", "doc/contact-bodies.md", s->smooth, &s->smooth, NULL));
+    s->smooth_tol = 1e-6;
+    PetscCall(PetscOptionsReal("-smooth_tol", "With -pair_<p>_smooth: the largest change of a corner's normal between the one the last Newton iteration held and the one at the solution (another Newton solve follows beyond it)", "doc/contact-bodies.md", s->smooth_tol, &s->smooth_tol, NULL));
+    PetscCheck(s->smooth_tol > 0 && PetscIsNormalReal(s->smooth_tol), comm, PETSC_ERR_USER_INPUT, "-pair_%s_smooth_tol %g must be positive", s->name, (double)s->smooth_tol);
     s->aug      = s->two_pass;
     s->aug_tol  = -1e-3;
     s->aug_mtol = 0.2;
@@ -324,6 +334,7 @@ static PetscErrorCode SideSetUp(ContactPairs p, PairSide *sd)
   PetscCall(PetscMalloc4(12 * nf + 1, &sd->foid, 12 * nf + 1, &sd->fog, 12 * nf + 1, &sd->fox, 12 * nf + 1, &sd->fox0));
   PetscCall(PetscCalloc1(12 * nf + 1, &sd->fof));
   PetscCall(PetscCalloc1(12 * nf + 1, &sd->fofc));
+  PetscCall(PetscCalloc1(12 * nf + 1, &sd->fonb));
   for (PetscInt f = 0; f < nf; f++) {
     sd->foid[12 * f] = 6 * m->elem_src[fc[f] / 6] + fc[f] % 6;
     for (int a = 0; a < 4; a++) sd->foid[12 * f + 1 + a] = m->node_src[sd->fov[4 * f + a]]; /* its corners */
@@ -420,6 +431,7 @@ PetscErrorCode ContactPairsSetUp(ContactPairs p, const Mesh *m)
     for (int pass = 0; pass < (s->two_pass ? 2 : 1); pass++) {
       PairSide *sd = &p->side[p->nside++];
       sd->spec     = k;
+      sd->smooth   = s->smooth;
       sd->weight   = s->two_pass ? 0.5 : 1.0;
       PetscCall(PetscStrncpy(sd->sset, pass ? s->master : s->slave, ATRITO_NAME_LEN));
       PetscCall(PetscStrncpy(sd->mset, pass ? s->slave : s->master, ATRITO_NAME_LEN));
@@ -436,6 +448,8 @@ static PetscErrorCode SideDestroy(PairSide *sd)
   PetscCall(PetscFree4(sd->foid, sd->fog, sd->fox, sd->fox0));
   PetscCall(PetscFree(sd->fof));
   PetscCall(PetscFree(sd->fofc));
+  PetscCall(PetscFree(sd->fonb));
+  PetscCall(PetscFree(sd->fcnb));
   PetscCall(PetscFree5(sd->fcid, sd->fcg, sd->fcx, sd->fcx0, sd->fcf));
   PetscCall(PetscSFDestroy(&sd->sf));
   PetscCall(PetscFree4(sd->sv, sd->sg, sd->kn, sd->kt));
@@ -528,6 +542,8 @@ static PetscErrorCode SideCandidates(ContactPairs p, PairSide *sd, const PetscSc
   PetscCall(PetscSFDestroy(&sd->sf));
   sd->nfc = rdisp[size];
   PetscCall(PetscMalloc5(12 * sd->nfc + 1, &sd->fcid, 12 * sd->nfc + 1, &sd->fcg, 12 * sd->nfc + 1, &sd->fcx, 12 * sd->nfc + 1, &sd->fcx0, 12 * sd->nfc + 1, &sd->fcf));
+  PetscCall(PetscFree(sd->fcnb));
+  PetscCall(PetscCalloc1(12 * sd->nfc + 1, &sd->fcnb));
   PetscCall(PetscMalloc1(12 * sd->nfc + 1, &remote));
   for (PetscMPIInt r = 0; r < size; r++)
     for (PetscInt j = rdisp[r]; j < rdisp[r + 1]; j++)
@@ -623,12 +639,69 @@ static PetscErrorCode SideCandidates(ContactPairs p, PairSide *sd, const PetscSc
   PetscFunctionReturn(0);
 }
 
+/* -pair_<p>_smooth: the master surface's normal at each of its vertices, the mean of the normals of
+   the master faces around it weighted by their areas (over all ranks, through the unconstrained
+   section), at the face positions fox; each owned face's four, then the candidates' from their
+   owners (collective). Held within a Newton iteration, as the frame seeds are. */
+static PetscErrorCode SideNormals(ContactPairs p, PairSide *sd)
+{
+  const Mesh  *m = p->mesh;
+  Vec          vl, vg;
+  PetscSection ls;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  if (!p->spec[sd->spec].smooth) PetscFunctionReturn(0);
+  PetscCall(DMGetLocalSection(m->dmr, &ls));
+  PetscCall(DMGetLocalVector(m->dmr, &vl));
+  PetscCall(DMGetGlobalVector(m->dmr, &vg));
+  PetscCall(VecZeroEntries(vl));
+  PetscCall(VecGetArray(vl, &a));
+  for (PetscInt f = 0; f < sd->nfo; f++) {
+    const PetscReal *x = sd->fox + 12 * f;
+    double           d1[3], d2[3], nr[3];
+    for (int k = 0; k < 3; k++) {
+      d1[k] = x[6 + k] - x[k];
+      d2[k] = x[9 + k] - x[3 + k];
+    }
+    nr[0] = 0.5 * (d1[1] * d2[2] - d1[2] * d2[1]); /* the face's area times its normal */
+    nr[1] = 0.5 * (d1[2] * d2[0] - d1[0] * d2[2]);
+    nr[2] = 0.5 * (d1[0] * d2[1] - d1[1] * d2[0]);
+    for (int c = 0; c < 4; c++) {
+      PetscInt off;
+      PetscCall(PetscSectionGetOffset(ls, m->vstart + sd->fov[4 * f + c], &off));
+      for (int k = 0; k < 3; k++) a[off + k] += nr[k];
+    }
+  }
+  PetscCall(VecRestoreArray(vl, &a));
+  PetscCall(VecZeroEntries(vg));
+  PetscCall(DMLocalToGlobal(m->dmr, vl, ADD_VALUES, vg));
+  PetscCall(DMGlobalToLocal(m->dmr, vg, INSERT_VALUES, vl));
+  PetscCall(VecGetArray(vl, &a));
+  for (PetscInt f = 0; f < sd->nfo; f++)
+    for (int c = 0; c < 4; c++) {
+      PetscInt  off;
+      PetscReal nn = 0;
+      PetscCall(PetscSectionGetOffset(ls, m->vstart + sd->fov[4 * f + c], &off));
+      for (int k = 0; k < 3; k++) nn += PetscSqr(PetscRealPart(a[off + k]));
+      nn = PetscSqrtReal(nn);
+      for (int k = 0; k < 3; k++) sd->fonb[12 * f + 3 * c + k] = nn > 0 ? PetscRealPart(a[off + k]) / nn : 0;
+    }
+  PetscCall(VecRestoreArray(vl, &a));
+  PetscCall(DMRestoreLocalVector(m->dmr, &vl));
+  PetscCall(DMRestoreGlobalVector(m->dmr, &vg));
+  PetscCall(PetscSFBcastBegin(sd->sf, MPIU_REAL, sd->fonb, sd->fcnb, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(sd->sf, MPIU_REAL, sd->fonb, sd->fcnb, MPI_REPLACE));
+  PetscFunctionReturn(0);
+}
+
 /* the current corner positions of the candidates from their owners (collective) */
 static PetscErrorCode SideRefresh(ContactPairs p, PairSide *sd, const PetscScalar *u)
 {
   PetscFunctionBeginUser;
   if (!sd->sf) { /* an evaluation before the first step (the initial state): the candidates at u */
     PetscCall(SideCandidates(p, sd, u));
+    PetscCall(SideNormals(p, sd));
     PetscFunctionReturn(0);
   }
   for (PetscInt f = 0; f < sd->nfo; f++) FaceCorners(p->mesh, sd->fov + 4 * f, u, sd->fox + 12 * f);
@@ -647,6 +720,9 @@ static PetscErrorCode SideRefresh(ContactPairs p, PairSide *sd, const PetscScala
    is not a candidate (the node is at the body's other side), nor is a face the node is a corner of.
    -1 if none. */
 #define PAIR_EDGE_TOL 0.1
+/* the projection of y on candidate c: along the interpolated normal field (-pair_<p>_smooth, the
+   corners' normals fcnb) or the closest point */
+static int Project(const PairSide *sd, PetscInt c, const double y[3], const double xi0[2], int derivs, NTSProjection *pr);
 static PetscInt PairNode(const PairSide *sd, PetscInt i, const double y[3], NTSProjection *best)
 {
   const PetscInt self = sd->ssrc[i];
@@ -661,7 +737,7 @@ static PetscInt PairNode(const PairSide *sd, PetscInt i, const double y[3], NTSP
     NTSProjection  pr;
     double         d = 0, o;
     if (sd->fcid[12 * c + 1] == self || sd->fcid[12 * c + 2] == self || sd->fcid[12 * c + 3] == self || sd->fcid[12 * c + 4] == self) continue; /* its own face */
-    if (NTSProject(4, y, (const double(*)[3])x, xi0, 1e-10, 0, &pr)) continue;
+    if (Project(sd, c, y, xi0, 0, &pr)) continue;
     { /* a node deeper behind the face than half its larger diagonal is on the body's other side */
       double d1 = 0, d2 = 0;
       for (int k = 0; k < 3; k++) {
@@ -693,6 +769,13 @@ static PetscInt PairNode(const PairSide *sd, PetscInt i, const double y[3], NTSP
   return bc;
 }
 
+static int Project(const PairSide *sd, PetscInt c, const double y[3], const double xi0[2], int derivs, NTSProjection *pr)
+{
+  const double(*x)[3] = (const double(*)[3])(sd->fcx + 12 * c);
+  if (sd->smooth) return NTSProjectNormal(4, y, x, (const double(*)[3])(sd->fcnb + 12 * c), xi0, 1e-10, derivs, pr);
+  return NTSProject(4, y, x, xi0, 1e-10, derivs, pr);
+}
+
 PetscErrorCode ContactPairsSeed(ContactPairs p, const PetscScalar *u, PetscBool from_committed)
 {
   PetscFunctionBeginUser;
@@ -705,6 +788,7 @@ PetscErrorCode ContactPairsSeed(ContactPairs p, const PetscScalar *u, PetscBool 
        far within a step finds the faces it reaches (fixed within the iteration: its residual,
        line search and Jacobian see the same faces) */
     PetscCall(SideCandidates(p, sd, u));
+    PetscCall(SideNormals(p, sd));
     for (PetscInt i = 0; i < sd->ns; i++) {
       double        y[3], t1[3], t2[3];
       NTSProjection pr;
@@ -781,7 +865,7 @@ static PetscInt NodeEval(ContactPairs p, PairSide *sd, PetscInt i, const double 
   st->xi[1] = pr.xi[1];
   st->gap   = pr.g;
   if (pr.g > 0 && !(sd->lam[3 * i] - law.KN * pr.g > 0)) return c; /* open (held by no multiplier) */
-  if (Kx && NTSProject(4, y, (const double(*)[3])(sd->fcx + 12 * c), pr.xi, 1e-10, 1, &pr)) {
+  if (Kx && Project(sd, c, y, pr.xi, 1, &pr)) {
     *status_err = 1;
     return -1;
   }
@@ -1123,11 +1207,13 @@ PetscErrorCode ContactPairsCheckpointUnpack(ContactPairs p, const PetscReal *row
   PetscFunctionReturn(0);
 }
 
+/* the pairs need the stepper's loop after a converged Newton solve: augmented, or smoothed (the
+   normals held in the last iteration checked against the solution's) */
 PetscBool ContactPairsAugmented(ContactPairs p)
 {
   if (!p) return PETSC_FALSE;
   for (PetscInt k = 0; k < p->np; k++)
-    if (p->spec[k].aug) return PETSC_TRUE;
+    if (p->spec[k].aug || p->spec[k].smooth) return PETSC_TRUE;
   return PETSC_FALSE;
 }
 
@@ -1145,6 +1231,20 @@ PetscErrorCode ContactPairsAugment(ContactPairs p, PetscBool *converged, PetscRe
   PetscFunctionBeginUser;
   *converged = PETSC_TRUE;
   *maxpen = *dlambda = 0;
+  /* the smoothed sides: the corners' normals at the solution (the positions of its evaluation)
+     against the ones held in its last Newton iteration */
+  for (PetscInt s = 0; s < p->nside; s++) {
+    PairSide  *sd = &p->side[s];
+    PetscReal *old, dn = 0;
+    if (!sd->smooth) continue;
+    PetscCall(PetscMalloc1(12 * sd->nfo + 1, &old));
+    PetscCall(PetscArraycpy(old, sd->fonb, 12 * sd->nfo));
+    PetscCall(SideNormals(p, sd));
+    for (PetscInt k = 0; k < 12 * sd->nfo; k++) dn = PetscMax(dn, PetscAbsReal(sd->fonb[k] - old[k]));
+    PetscCall(PetscFree(old));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dn, 1, MPIU_REAL, MPIU_MAX, p->comm));
+    if (dn > p->spec[sd->spec].smooth_tol) *converged = PETSC_FALSE;
+  }
   PetscCall(PetscCalloc1(nv + 1, &loc)); /* per side: penetration, stick slip, change, largest multiplier */
   for (PetscInt s = 0; s < p->nside; s++) {
     PairSide       *sd = &p->side[s];

@@ -131,7 +131,7 @@ PetscErrorCode StepperSetUp(Stepper *st, BCs *bcs, Contact contact)
      micrometres of gap opened the frictional punch's nodes and the line search cut the first
      Newton step; holding the tools at rest as well (all) failed the aluminium cup (doc/contact.md,
      Augmented Lagrangian) */
-  if (!st->keep_contact_set && ContactAugmented(contact)) st->keep_contact = 2;
+  if (!st->keep_contact_set && ContactToolsAugmented(contact)) st->keep_contact = 2;
   PetscFunctionReturn(0);
 }
 
