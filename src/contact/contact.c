@@ -96,6 +96,7 @@ struct _p_Contact {
   PetscReal  edge_tol;     /* -contact_edge_tolerance (< 0: auto, 1e-3 of each tool's box diagonal) */
   PetscReal  symmetry;     /* multiplicity of the model (0: from the mesh)                    */
   PetscReal  E_body;       /* the body's Young's modulus (ContactSetYoungModulus; 0: unknown)   */
+  PetscReal *Ecell;        /* per local cell its material's modulus (several bodies), else NULL  */
   PetscBool  kauto, ktauto;/* K_N (K_T) per node from the elements under it (auto)              */
   PetscReal  kfactor, kratio;
   PetscBool  aug;          /* augmented Lagrangian (Uzawa updates between Newton solves)      */
@@ -707,6 +708,9 @@ PetscErrorCode ContactSetCellModuli(Contact c, PetscInt nc, const PetscReal *Ec)
 {
   PetscFunctionBeginUser;
   PetscCall(ContactPairsSetCellModuli(c->pairs, nc, Ec));
+  PetscCall(PetscFree(c->Ecell));
+  PetscCall(PetscMalloc1(nc + 1, &c->Ecell));
+  PetscCall(PetscArraycpy(c->Ecell, Ec, nc));
   PetscFunctionReturn(0);
 }
 ContactPairs ContactGetPairs(Contact c) { return c->pairs; }
@@ -744,8 +748,10 @@ static double HexVolume(const double x[8][3])
 /* The element size normal to the contact faces at each slave node: h_i = 2 V_i / A_i, V_i the
    node's share of the volume of the elements around it (an eighth of each; summed over the ranks
    through the unconstrained twin DM, so rank-independent), A_i its tributary area (for a regular
-   mesh, the thickness of the element layer under the face). h[i] = 0 where A_i = 0. */
-static PetscErrorCode ElementSizes(Contact contact, PetscReal *h)
+   mesh, the thickness of the element layer under the face). h[i] = 0 where A_i = 0. With several
+   bodies (ContactSetCellModuli) En[i] is the modulus of the node's elements, weighted by the same
+   volume shares (E_body without them). */
+static PetscErrorCode ElementSizes(Contact contact, PetscReal *h, PetscReal *En)
 {
   const Mesh        *m = contact->mesh;
   Vec                Vl, Vg;
@@ -763,7 +769,10 @@ static PetscErrorCode ElementSizes(Contact contact, PetscReal *h)
     for (int a = 0; a < 8; a++)
       for (int k = 0; k < 3; k++) x[a][k] = m->X[3 * m->cv[8 * c + a] + k];
     const double V = HexVolume(x);
-    for (int a = 0; a < 8; a++) vl[m->vloff[m->cv[8 * c + a]]] += V / 8;
+    for (int a = 0; a < 8; a++) {
+      vl[m->vloff[m->cv[8 * c + a]]] += V / 8;
+      if (contact->Ecell) vl[m->vloff[m->cv[8 * c + a]] + 1] += contact->Ecell[c] * V / 8;
+    }
   }
   PetscCall(VecRestoreArray(Vl, &vl));
   PetscCall(DMLocalToGlobal(m->dmr, Vl, ADD_VALUES, Vg));
@@ -773,6 +782,7 @@ static PetscErrorCode ElementSizes(Contact contact, PetscReal *h)
     const PetscInt  v = contact->slave[i];
     const PetscReal A = m->varea ? m->varea[v] : 0;
     h[i]              = A > 0 ? 2 * PetscRealPart(vr[m->vloff[v]]) / A : 0;
+    if (En) En[i] = contact->Ecell ? PetscRealPart(vr[m->vloff[v] + 1]) / PetscRealPart(vr[m->vloff[v]]) : contact->E_body;
   }
   PetscCall(VecRestoreArrayRead(Vl, &vr));
   PetscCall(DMRestoreLocalVector(m->dmr, &Vl));
@@ -903,8 +913,10 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     PetscReal *h, hmin = PETSC_MAX_REAL;
     PetscInt   nzero = 0;
     PetscCheck(m->varea, contact->comm, PETSC_ERR_PLIB, "contact: the mesh carries no tributary areas");
+    PetscReal *En;
     PetscCall(PetscMalloc1(contact->ns + 1, &h));
-    PetscCall(ElementSizes(contact, h));
+    PetscCall(PetscMalloc1(contact->ns + 1, &En));
+    PetscCall(ElementSizes(contact, h, En));
     for (PetscInt i = 0; i < contact->ns; i++) {
       if (h[i] > 0) hmin = PetscMin(hmin, h[i]);
       else nzero++;
@@ -916,20 +928,29 @@ PetscErrorCode ContactSetUp(Contact contact, const Mesh *m)
     if (contact->kanyauto) {
       PetscReal E, kmin = PETSC_MAX_REAL, kmax = 0;
       PetscCheck(!nzero, contact->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto: %" PetscInt_FMT " slave nodes of -contact_set '%s'%s lie on no boundary face whose four vertices are all in one of the sets, so they have no tributary area", nzero, contact->set[0], contact->nset > 1 ? ", ..." : "");
-      /* the body's Young's modulus, from its material (ContactSetYoungModulus) */
+      /* the body's Young's modulus, from its material (ContactSetYoungModulus; with several bodies
+         each node's, from the materials of its elements) */
       E = contact->E_body;
+      {
+        PetscInt bad = 0;
+        for (PetscInt i = 0; i < contact->ns; i++) bad += !(En[i] > 0 && PetscIsNormalReal(En[i]));
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, contact->comm));
+        if (contact->Ecell) E = bad ? 0 : 1; /* (checked below) */
+      }
       PetscCheck(E > 0 && PetscIsNormalReal(E), contact->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_normal auto needs the body's Young's modulus, which its material does not give (a user material: give -contact_penalty_normal a value)");
       PetscCall(PetscMalloc2(contact->ns, &contact->kn, contact->ns, &contact->kt));
       for (PetscInt i = 0; i < contact->ns; i++) {
-        contact->kn[i] = contact->kfactor * E * m->varea[contact->slave[i]] / h[i];
+        contact->kn[i] = contact->kfactor * En[i] * m->varea[contact->slave[i]] / h[i];
         contact->kt[i] = contact->ktauto ? contact->kratio * contact->kn[i] : contact->law.KT;
         kmin      = PetscMin(kmin, contact->kn[i]);
         kmax      = PetscMax(kmax, contact->kn[i]);
       }
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmin, 1, MPIU_REAL, MPI_MIN, contact->comm));
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmax, 1, MPIU_REAL, MPI_MAX, contact->comm));
-      PetscCall(PetscPrintf(contact->comm, "contact: automatic penalty K_N = %g x E %g x A / h per node: smallest %g, largest %g; K_T %s; smallest element size normal to the contact faces %g\n", (double)contact->kfactor, (double)E, (double)kmin, (double)kmax, contact->ktauto ? "= -contact_penalty_ratio x K_N" : "as given", (double)contact->hmin));
+      if (contact->Ecell) PetscCall(PetscPrintf(contact->comm, "contact: automatic penalty K_N = %g x E x A / h per node (E of its elements' materials): smallest %g, largest %g; K_T %s; smallest element size normal to the contact faces %g\n", (double)contact->kfactor, (double)kmin, (double)kmax, contact->ktauto ? "= -contact_penalty_ratio x K_N" : "as given", (double)contact->hmin));
+      else PetscCall(PetscPrintf(contact->comm, "contact: automatic penalty K_N = %g x E %g x A / h per node: smallest %g, largest %g; K_T %s; smallest element size normal to the contact faces %g\n", (double)contact->kfactor, (double)E, (double)kmin, (double)kmax, contact->ktauto ? "= -contact_penalty_ratio x K_N" : "as given", (double)contact->hmin));
     }
+    PetscCall(PetscFree(En));
   }
   if (contact->aug) {
     contact->tol = contact->aug_tol > 0 ? contact->aug_tol : PETSC_MAX_REAL;
@@ -1041,6 +1062,7 @@ PetscErrorCode ContactDestroy(Contact *c)
   PetscFunctionBeginUser;
   if (!contact) PetscFunctionReturn(0);
   PetscCall(ContactPairsDestroy(&contact->pairs));
+  PetscCall(PetscFree(contact->Ecell));
   if (contact->ntools && contact->mesh) {
     PetscCall(PetscFree4(contact->slave, contact->sgdof, contact->seed, contact->has_seed));
     PetscCall(PetscFree2(contact->seedn, contact->yseed));
