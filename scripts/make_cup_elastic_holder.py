@@ -31,6 +31,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, ".."))
 sys.path.insert(0, HERE)
+from inpdeck import read_inp  # noqa: E402
 from make_pair_cases import Deck  # noqa: E402
 
 BLANK = "cases/sheets/numisheet93_cup_coarse.inp"
@@ -54,38 +55,6 @@ MU = 0.144          # the blank and the plate: the rigid holder's friction
 MU_TOP = 0.0        # the plane on the plate's top (see the case's header)
 F_QUARTER = 4900.0  # 19.6 kN on the quarter model
 NID0, EID0 = 100001, 100001
-
-
-def read_inp(path):
-    """nodes, elements (per element set) and node sets of a C3D8 deck"""
-    X, elems, nsets = {}, [], {}
-    mode, name = None, None
-    for line in open(path):
-        s = line.strip()
-        if not s or s.startswith("**"):
-            continue
-        if s.startswith("*"):
-            kw = [p.strip() for p in s[1:].split(",")]
-            key = kw[0].upper()
-            opts = {p.split("=")[0].strip().upper(): p.split("=")[1].strip() for p in kw[1:] if "=" in p}
-            if key == "NODE":
-                mode = "node"
-            elif key == "ELEMENT":
-                mode, name = "elem", opts["ELSET"]
-            elif key == "NSET":
-                mode, name = "nset", opts["NSET"]
-                nsets[name] = []
-            else:
-                mode = None
-            continue
-        v = [p.strip() for p in s.split(",") if p.strip()]
-        if mode == "node":
-            X[int(v[0])] = tuple(float(a) for a in v[1:4])
-        elif mode == "elem":
-            elems.append((int(v[0]), [int(a) for a in v[1:9]], name))
-        elif mode == "nset":
-            nsets[name].extend(int(a) for a in v)
-    return X, elems, nsets
 
 
 def plate_2d():

@@ -48,6 +48,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "tests", "checks"))
 from hertz_pair import fit_ellipse, read_nset  # noqa: E402
+from inpdeck import read_inp  # noqa: E402
 
 CASE = "cases/pair_hertz.opts"
 MESH = "cases/meshes/pair_hertz.inp"
@@ -64,35 +65,6 @@ TYPES = {"n2s": "NODE TO SURFACE", "s2s": "SURFACE TO SURFACE"}
 
 # the faces of a C3D8 in CalculiX's (Abaqus') numbering S1..S6
 FACES = {1: (0, 1, 2, 3), 2: (4, 5, 6, 7), 3: (0, 1, 5, 4), 4: (1, 2, 6, 5), 5: (2, 3, 7, 6), 6: (3, 0, 4, 7)}
-
-
-def read_inp(path):
-    """nodes {id: (x, y, z)}, elements [(id, [8 ids], elset)], node sets {name: [ids]} of the deck"""
-    X, elems, nsets = {}, [], {}
-    mode, name = None, None
-    for line in open(path):
-        s = line.strip()
-        if not s or s.startswith("**"):
-            continue
-        if s.startswith("*"):
-            parts = [p.strip() for p in s[1:].split(",")]
-            kw = parts[0].upper()
-            opts = {k.strip().upper(): v.strip() for k, _, v in (p.partition("=") for p in parts[1:])}
-            mode, name = kw, None
-            if kw == "ELEMENT":
-                name = opts.get("ELSET")
-            elif kw == "NSET":
-                name = opts["NSET"]
-                nsets.setdefault(name, [])
-            continue
-        v = [p for p in s.replace(",", " ").split()]
-        if mode == "NODE":
-            X[int(v[0])] = tuple(float(p) for p in v[1:4])
-        elif mode == "ELEMENT":
-            elems.append((int(v[0]), [int(p) for p in v[1:9]], name))
-        elif mode == "NSET":
-            nsets[name].extend(int(p) for p in v)
-    return X, elems, nsets
 
 
 def surface_faces(elems, elset, nodes):

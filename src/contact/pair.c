@@ -22,6 +22,7 @@
    per face); the candidates of a rank are the faces whose box meets the box of its slave nodes
    widened by the search distance, its leaves. Each evaluation broadcasts the faces' positions
    from their owners and reduces the forces on them back. */
+#include <math.h>
 #include <string.h>
 #include <petscsf.h>
 #include "contact_pair.h"
@@ -101,7 +102,6 @@ struct _p_ContactPairs {
   const Mesh *mesh;
   PetscReal   E;
   PetscReal  *Ecell;         /* per local cell its material's modulus (several bodies), else NULL */
-  PetscReal  *mforce;        /* work: 3 nv, the master nodes' forces (ContactPairsGetNodeFields) */
   PetscInt    np;
   PairSpec    spec[PAIR_MAX];
   PetscInt    nside;
@@ -247,6 +247,46 @@ static void FaceCorners(const Mesh *m, const PetscInt *fv, const PetscScalar *u,
     for (int k = 0; k < 3; k++) x[3 * a + k] = m->X[3 * fv[a] + k] + (u ? PetscRealPart(u[m->vloff[fv[a]] + k]) : 0);
 }
 
+/* a quadrilateral's area times its unit normal, half the cross product of its diagonals (exact for
+   a plane face) */
+static void FaceAreaNormal(const PetscReal x[12], double nr[3])
+{
+  double d1[3], d2[3];
+  for (int k = 0; k < 3; k++) {
+    d1[k] = x[6 + k] - x[k];
+    d2[k] = x[9 + k] - x[3 + k];
+  }
+  nr[0] = 0.5 * (d1[1] * d2[2] - d1[2] * d2[1]);
+  nr[1] = 0.5 * (d1[2] * d2[0] - d1[0] * d2[2]);
+  nr[2] = 0.5 * (d1[0] * d2[1] - d1[1] * d2[0]);
+}
+
+/* a quadrilateral's larger diagonal */
+static double FaceDiagonal(const PetscReal x[12])
+{
+  double d1 = 0, d2 = 0;
+  for (int k = 0; k < 3; k++) {
+    d1 += (x[6 + k] - x[k]) * (x[6 + k] - x[k]);
+    d2 += (x[9 + k] - x[3 + k]) * (x[9 + k] - x[3 + k]);
+  }
+  return sqrt(d1 > d2 ? d1 : d2);
+}
+
+/* the sums over the ranks of what each added at its local vertices in vl (a local vector of the
+   unconstrained section): every vertex, owned or ghost, gets the total (collective) */
+static PetscErrorCode VertexSum(const Mesh *m, Vec vl)
+{
+  Vec vg;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(m->dmr, &vg));
+  PetscCall(VecZeroEntries(vg));
+  PetscCall(DMLocalToGlobal(m->dmr, vl, ADD_VALUES, vg));
+  PetscCall(DMGlobalToLocal(m->dmr, vg, INSERT_VALUES, vl));
+  PetscCall(DMRestoreGlobalVector(m->dmr, &vg));
+  PetscFunctionReturn(0);
+}
+
 /* The slave faces' smallest element size hmin (all ranks) and, with the automatic penalty, the
    penalty of the slave nodes of side sd: K_N = factor sum_f E_f a_i(f) / h_f over the
    boundary faces f of the slave set at node i (a_i its share of the face's area, h_f the extent of
@@ -257,7 +297,7 @@ static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s
 {
   const Mesh  *m = p->mesh;
   PetscInt     nf, *fv, *fc;
-  Vec          kl, kg;
+  Vec          kl;
   PetscSection ls;
   PetscScalar *a;
   static const int opp[6] = {1, 0, 4, 5, 2, 3};
@@ -267,13 +307,13 @@ static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s
   PetscCall(MeshGetBoundaryFaces(m, sd->sset, &nf, &fv, &fc));
   sd->hmin = PETSC_MAX_REAL;
   PetscCall(DMGetLocalSection(m->dmr, &ls));
-  PetscCall(DMCreateLocalVector(m->dmr, &kl));
-  PetscCall(DMCreateGlobalVector(m->dmr, &kg));
+  PetscCall(DMGetLocalVector(m->dmr, &kl));
   PetscCall(VecZeroEntries(kl));
   PetscCall(VecGetArray(kl, &a));
   for (PetscInt f = 0; f < nf; f++) {
     const PetscInt c = fc[f] / 6, k = fc[f] % 6, *cv = m->cv + 8 * c;
     double         x[4][3], ar[4], c0[3] = {0, 0, 0}, c1[3] = {0, 0, 0}, nrm[3], A = 0, h = 0;
+    PetscReal      xf[12];
     for (int j = 0; j < 4; j++)
       for (int d = 0; d < 3; d++) {
         x[j][d] = m->X[3 * cv[hexface[k][j]] + d];
@@ -281,12 +321,9 @@ static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s
         c1[d] += 0.25 * m->X[3 * cv[hexface[opp[k]][j]] + d];
       }
     ContactQuadAreas(x, ar);
-    {
-      const double d1[3] = {x[2][0] - x[0][0], x[2][1] - x[0][1], x[2][2] - x[0][2]}, d2[3] = {x[3][0] - x[1][0], x[3][1] - x[1][1], x[3][2] - x[1][2]};
-      nrm[0] = d1[1] * d2[2] - d1[2] * d2[1];
-      nrm[1] = d1[2] * d2[0] - d1[0] * d2[2];
-      nrm[2] = d1[0] * d2[1] - d1[1] * d2[0];
-    }
+    for (int j = 0; j < 4; j++)
+      for (int d = 0; d < 3; d++) xf[3 * j + d] = x[j][d];
+    FaceAreaNormal(xf, nrm);
     for (int d = 0; d < 3; d++) A += nrm[d] * nrm[d];
     A = PetscSqrtReal(A);
     for (int d = 0; d < 3; d++) h += (c0[d] - c1[d]) * nrm[d] / A;
@@ -301,9 +338,7 @@ static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s
     }
   }
   PetscCall(VecRestoreArray(kl, &a));
-  PetscCall(VecZeroEntries(kg));
-  PetscCall(DMLocalToGlobal(m->dmr, kl, ADD_VALUES, kg));
-  PetscCall(DMGlobalToLocal(m->dmr, kg, INSERT_VALUES, kl));
+  PetscCall(VertexSum(m, kl));
   PetscCall(VecGetArray(kl, &a));
   for (PetscInt i = 0; i < sd->ns && s->kauto; i++) {
     PetscInt off;
@@ -312,8 +347,7 @@ static PetscErrorCode SlaveFaces(ContactPairs p, PairSide *sd, const PairSpec *s
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sd->hmin, 1, MPIU_REAL, MPIU_MIN, p->comm));
   PetscCall(VecRestoreArray(kl, &a));
-  PetscCall(VecDestroy(&kl));
-  PetscCall(VecDestroy(&kg));
+  PetscCall(DMRestoreLocalVector(m->dmr, &kl));
   PetscCall(PetscFree(fv));
   PetscCall(PetscFree(fc));
   PetscFunctionReturn(0);
@@ -341,13 +375,7 @@ static PetscErrorCode SideSetUp(ContactPairs p, PairSide *sd)
     for (int a = 0; a < 4; a++) PetscCall(MeshVertexDofs(m, sd->fov[4 * f + a], sd->fog + 12 * f + 3 * a));
     FaceCorners(m, sd->fov + 4 * f, NULL, sd->fox0 + 12 * f);
     for (int k = 0; k < 12; k++) sd->fox[12 * f + k] = sd->fox0[12 * f + k];
-    {
-      const PetscReal *x = sd->fox0 + 12 * f;
-      for (int a = 0; a < 2; a++) {
-        const PetscReal d = PetscSqrtReal(PetscSqr(x[3 * (a + 2)] - x[3 * a]) + PetscSqr(x[3 * (a + 2) + 1] - x[3 * a + 1]) + PetscSqr(x[3 * (a + 2) + 2] - x[3 * a + 2]));
-        dmax = PetscMax(dmax, d);
-      }
-    }
+    dmax = PetscMax(dmax, FaceDiagonal(sd->fox0 + 12 * f));
   }
   PetscCall(PetscFree(fc));
   /* slave nodes: the owned vertices of the set */
@@ -646,7 +674,7 @@ static PetscErrorCode SideCandidates(ContactPairs p, PairSide *sd, const PetscSc
 static PetscErrorCode SideNormals(ContactPairs p, PairSide *sd)
 {
   const Mesh  *m = p->mesh;
-  Vec          vl, vg;
+  Vec          vl;
   PetscSection ls;
   PetscScalar *a;
 
@@ -654,19 +682,11 @@ static PetscErrorCode SideNormals(ContactPairs p, PairSide *sd)
   if (!p->spec[sd->spec].smooth) PetscFunctionReturn(0);
   PetscCall(DMGetLocalSection(m->dmr, &ls));
   PetscCall(DMGetLocalVector(m->dmr, &vl));
-  PetscCall(DMGetGlobalVector(m->dmr, &vg));
   PetscCall(VecZeroEntries(vl));
   PetscCall(VecGetArray(vl, &a));
   for (PetscInt f = 0; f < sd->nfo; f++) {
-    const PetscReal *x = sd->fox + 12 * f;
-    double           d1[3], d2[3], nr[3];
-    for (int k = 0; k < 3; k++) {
-      d1[k] = x[6 + k] - x[k];
-      d2[k] = x[9 + k] - x[3 + k];
-    }
-    nr[0] = 0.5 * (d1[1] * d2[2] - d1[2] * d2[1]); /* the face's area times its normal */
-    nr[1] = 0.5 * (d1[2] * d2[0] - d1[0] * d2[2]);
-    nr[2] = 0.5 * (d1[0] * d2[1] - d1[1] * d2[0]);
+    double nr[3];
+    FaceAreaNormal(sd->fox + 12 * f, nr);
     for (int c = 0; c < 4; c++) {
       PetscInt off;
       PetscCall(PetscSectionGetOffset(ls, m->vstart + sd->fov[4 * f + c], &off));
@@ -674,9 +694,7 @@ static PetscErrorCode SideNormals(ContactPairs p, PairSide *sd)
     }
   }
   PetscCall(VecRestoreArray(vl, &a));
-  PetscCall(VecZeroEntries(vg));
-  PetscCall(DMLocalToGlobal(m->dmr, vl, ADD_VALUES, vg));
-  PetscCall(DMGlobalToLocal(m->dmr, vg, INSERT_VALUES, vl));
+  PetscCall(VertexSum(m, vl));
   PetscCall(VecGetArray(vl, &a));
   for (PetscInt f = 0; f < sd->nfo; f++)
     for (int c = 0; c < 4; c++) {
@@ -689,7 +707,6 @@ static PetscErrorCode SideNormals(ContactPairs p, PairSide *sd)
     }
   PetscCall(VecRestoreArray(vl, &a));
   PetscCall(DMRestoreLocalVector(m->dmr, &vl));
-  PetscCall(DMRestoreGlobalVector(m->dmr, &vg));
   PetscCall(PetscSFBcastBegin(sd->sf, MPIU_REAL, sd->fonb, sd->fcnb, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(sd->sf, MPIU_REAL, sd->fonb, sd->fcnb, MPI_REPLACE));
   PetscFunctionReturn(0);
@@ -738,14 +755,7 @@ static PetscInt PairNode(const PairSide *sd, PetscInt i, const double y[3], NTSP
     double         d = 0, o;
     if (sd->fcid[12 * c + 1] == self || sd->fcid[12 * c + 2] == self || sd->fcid[12 * c + 3] == self || sd->fcid[12 * c + 4] == self) continue; /* its own face */
     if (Project(sd, c, y, xi0, 0, &pr)) continue;
-    { /* a node deeper behind the face than half its larger diagonal is on the body's other side */
-      double d1 = 0, d2 = 0;
-      for (int k = 0; k < 3; k++) {
-        d1 += (x[6 + k] - x[k]) * (x[6 + k] - x[k]);
-        d2 += (x[9 + k] - x[3 + k]) * (x[9 + k] - x[3 + k]);
-      }
-      if (pr.g < -0.5 * PetscSqrtReal(PetscMax(d1, d2))) continue;
-    }
+    if (pr.g < -0.5 * FaceDiagonal(x)) continue; /* deeper behind it than half its diagonal: the body's other side */
     if (!pr.inside) {
       o = PetscMax(PetscAbsReal(pr.xi[0]), PetscAbsReal(pr.xi[1])) - 1;
       if (o <= PAIR_EDGE_TOL && (o < bo || (o == bo && sd->fcid[12 * c] < sd->fcid[12 * oc]))) {
@@ -932,7 +942,7 @@ PetscErrorCode ContactPairsAssemble(ContactPairs p, const PetscScalar *u, PetscS
     PetscCall(SideRefresh(p, sd, u));
     PetscCall(PetscArrayzero(sd->fcf, 12 * sd->nfc));
     for (PetscInt i = 0; i < sd->ns; i++) {
-      double   y[3], Rs[3], N[4], Kx[225];
+      double   y[3], Rs[3], N[4] = {0, 0, 0, 0}, Kx[225];
       PetscInt c, err;
       SlavePosition(p->mesh, sd->sv[i], u, y);
       c = NodeEval(p, sd, i, y, Rs, N, J ? Kx : NULL, &err);
@@ -987,9 +997,9 @@ PetscErrorCode ContactPairsCommit(ContactPairs p)
 PetscErrorCode ContactPairsGetNodeFields(ContactPairs p, PetscReal *gap, PetscReal *fn, PetscReal *ft, PetscReal *status, PetscReal *slip)
 {
   const Mesh  *m = p ? p->mesh : NULL;
-  Vec          vl, vg;
+  Vec          vf, vn;
   PetscSection ls;
-  PetscScalar *a;
+  PetscScalar *af, *an;
 
   PetscFunctionBeginUser;
   if (!p || !p->np) PetscFunctionReturn(0);
@@ -1007,69 +1017,60 @@ PetscErrorCode ContactPairsGetNodeFields(ContactPairs p, PetscReal *gap, PetscRe
       if (slip) slip[r] += st->slip;
     }
   }
-  /* the master side: per vertex the force (3) and the normal (3), through the unconstrained
-     section's local vectors (6 values per vertex: two of them) */
+  /* the master side: per vertex the force and the normal (area-weighted), summed over the faces
+     and the ranks in two local vectors of the unconstrained section */
   PetscCall(DMGetLocalSection(m->dmr, &ls));
-  for (int part = 0; part < 2; part++) {
-    PetscCall(DMCreateLocalVector(m->dmr, &vl));
-    PetscCall(DMCreateGlobalVector(m->dmr, &vg));
-    PetscCall(VecZeroEntries(vl));
-    PetscCall(VecGetArray(vl, &a));
-    for (PetscInt s = 0; s < p->nside; s++) {
-      const PairSide *sd = &p->side[s];
-      for (PetscInt f = 0; f < sd->nfo; f++) {
-        const PetscReal *x = sd->fox0 + 12 * f;
-        double           d1[3], d2[3], nr[3];
+  PetscCall(DMGetLocalVector(m->dmr, &vf));
+  PetscCall(DMGetLocalVector(m->dmr, &vn));
+  PetscCall(VecZeroEntries(vf));
+  PetscCall(VecZeroEntries(vn));
+  PetscCall(VecGetArray(vf, &af));
+  PetscCall(VecGetArray(vn, &an));
+  for (PetscInt s = 0; s < p->nside; s++) {
+    const PairSide *sd = &p->side[s];
+    for (PetscInt f = 0; f < sd->nfo; f++) {
+      double nr[3];
+      FaceAreaNormal(sd->fox0 + 12 * f, nr);
+      for (int c = 0; c < 4; c++) {
+        PetscInt off;
+        PetscCall(PetscSectionGetOffset(ls, m->vstart + sd->fov[4 * f + c], &off));
         for (int k = 0; k < 3; k++) {
-          d1[k] = x[6 + k] - x[k];
-          d2[k] = x[9 + k] - x[3 + k];
-        }
-        nr[0] = 0.5 * (d1[1] * d2[2] - d1[2] * d2[1]); /* the face's area times its normal */
-        nr[1] = 0.5 * (d1[2] * d2[0] - d1[0] * d2[2]);
-        nr[2] = 0.5 * (d1[0] * d2[1] - d1[1] * d2[0]);
-        for (int c = 0; c < 4; c++) {
-          PetscInt off;
-          PetscCall(PetscSectionGetOffset(ls, m->vstart + sd->fov[4 * f + c], &off));
-          for (int k = 0; k < 3; k++) a[off + k] += part ? nr[k] : -sd->fofc[12 * f + 3 * c + k];
+          af[off + k] -= sd->fofc[12 * f + 3 * c + k];
+          an[off + k] += nr[k];
         }
       }
     }
-    PetscCall(VecRestoreArray(vl, &a));
-    PetscCall(VecZeroEntries(vg));
-    PetscCall(DMLocalToGlobal(m->dmr, vl, ADD_VALUES, vg));
-    PetscCall(DMGlobalToLocal(m->dmr, vg, INSERT_VALUES, vl));
-    PetscCall(VecGetArray(vl, &a));
-    if (!part) PetscCall(PetscMalloc1(3 * m->nv + 1, &p->mforce));
-    for (PetscInt v = 0; v < m->nv && !part; v++) {
-      PetscInt off;
-      PetscCall(PetscSectionGetOffset(ls, m->vstart + v, &off));
-      for (int k = 0; k < 3; k++) p->mforce[3 * v + k] = PetscRealPart(a[off + k]);
-    }
-    for (PetscInt v = 0; v < m->nv && part; v++) {
-      PetscInt        off, r = m->vrow[v];
-      PetscReal       nr[3], nn = 0, F[3], Fn = 0;
-      if (r < 0) continue;
-      PetscCall(PetscSectionGetOffset(ls, m->vstart + v, &off));
-      for (int k = 0; k < 3; k++) {
-        nr[k] = PetscRealPart(a[off + k]);
-        nn += nr[k] * nr[k];
-        F[k] = p->mforce[3 * v + k];
-      }
-      if (!(nn > 0)) continue; /* not a master node */
-      nn = PetscSqrtReal(nn);
-      for (int k = 0; k < 3; k++) {
-        nr[k] /= nn;
-        Fn += F[k] * nr[k];
-      }
-      if (fn) fn[r] += -Fn;
-      for (int k = 0; ft && k < 3; k++) ft[3 * r + k] += F[k] - Fn * nr[k];
-      if (status && -Fn > 0 && !(status[r] > 0)) status[r] = 3;
-    }
-    PetscCall(VecRestoreArray(vl, &a));
-    PetscCall(VecDestroy(&vl));
-    PetscCall(VecDestroy(&vg));
   }
-  PetscCall(PetscFree(p->mforce));
+  PetscCall(VecRestoreArray(vf, &af));
+  PetscCall(VecRestoreArray(vn, &an));
+  PetscCall(VertexSum(m, vf));
+  PetscCall(VertexSum(m, vn));
+  PetscCall(VecGetArray(vf, &af));
+  PetscCall(VecGetArray(vn, &an));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt  off, r = m->vrow[v];
+    PetscReal nr[3], nn = 0, F[3], Fn = 0;
+    if (r < 0) continue;
+    PetscCall(PetscSectionGetOffset(ls, m->vstart + v, &off));
+    for (int k = 0; k < 3; k++) {
+      nr[k] = PetscRealPart(an[off + k]);
+      nn += nr[k] * nr[k];
+      F[k] = PetscRealPart(af[off + k]);
+    }
+    if (!(nn > 0)) continue; /* not a master node */
+    nn = PetscSqrtReal(nn);
+    for (int k = 0; k < 3; k++) {
+      nr[k] /= nn;
+      Fn += F[k] * nr[k];
+    }
+    if (fn) fn[r] += -Fn;
+    for (int k = 0; ft && k < 3; k++) ft[3 * r + k] += F[k] - Fn * nr[k];
+    if (status && -Fn > 0 && !(status[r] > 0)) status[r] = 3;
+  }
+  PetscCall(VecRestoreArray(vf, &af));
+  PetscCall(VecRestoreArray(vn, &an));
+  PetscCall(DMRestoreLocalVector(m->dmr, &vf));
+  PetscCall(DMRestoreLocalVector(m->dmr, &vn));
   PetscFunctionReturn(0);
 }
 
