@@ -38,6 +38,7 @@ typedef struct {
   /* options */
   PetscBool  assembly_coo;   /* Jacobian by coordinate (COO) assembly instead of MatSetValues */
   PetscBool  assembly_coo_set; /* -assembly_coo was given                                     */
+  PetscBool  bordered;       /* the Jacobian is a hypre mesh block bordered by force-driven tools (bordered.h) */
   char       mat_type[64];   /* -assembly_mat_type: the Jacobian's matrix type (empty: the DM's, AIJ) */
   PetscBool  near_null;      /* -assembly_near_null_space: the rigid-body modes on the Jacobian */
   LUOrdering lu_ordering;    /* LU by MUMPS: METIS nested dissection (direct calls) or MUMPS's own */

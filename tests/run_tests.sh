@@ -51,6 +51,8 @@ run output-np1      mpiexec -n 1 bin/test_output -output_dir "$TEST_OUT/output1"
 run output-np2      mpiexec -n 2 bin/test_output -output_dir "$TEST_OUT/output2"
 run lu-np1          mpiexec -n 1 bin/test_lu
 run lu-np2          mpiexec -n 2 bin/test_lu
+run bordered-np1    mpiexec -n 1 bin/test_bordered
+run bordered-np2    mpiexec -n 2 bin/test_bordered
 run sheetcoarse-np1 mpiexec -n 1 bin/test_sheetcoarse
 run sheetcoarse-np2 mpiexec -n 2 bin/test_sheetcoarse
 run predictor-np1   mpiexec -n 1 bin/test_predictor

@@ -234,3 +234,10 @@ done
 atrito 2 ft_view $FT -options_file cases/solver_process.opts -load_steps 2 -ksp_view &&
   grep -q "bordered by 3 force-driven tool unknowns" "$OUT/ft_view.log" && ok "-ksp_view (np=2): amgsys bordered by the holder's 3 unknowns" ||
   not_ok "-ksp_view: no border named"
+# 17b. the Jacobian bordered by the tools' unknowns (src/solver/bordered.c: hypre's mesh block and
+#      the border as vectors, cases/solver_process.opts) against the same solver on an AIJ
+#      Jacobian, whose mesh block amgsys copies: the same operator and preconditioner, the
+#      products' sums in another order
+atrito 2 ft_aij2 $FT -options_file cases/solver_process.opts -assembly_mat_type aij &&
+  compare "$OUT/ft_aij2/history.csv" "$OUT/ft_sys2/history.csv" 9 "force-driven holder, amgsys (np=2): the bordered hypre Jacobian against an AIJ one"
+grep -q "bordered Jacobian: the mesh block (hypre" "$OUT/ft_view.log" && ok "-ksp_view (np=2): the operator is the bordered Jacobian" || not_ok "-ksp_view: the bordered Jacobian not named"

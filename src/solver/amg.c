@@ -28,7 +28,8 @@
    -pc_hypre_boomeramg_relax_type_all SOR/Jacobi): a V-cycle that is not symmetric, whose
    iterations grew to 200 per solve at 200 000 hexahedra as the contact spread.
    The Jacobian is used in hypre's format as it is (-assembly_mat_type hypre), any other type is
-   converted at each setup. One V-cycle per application. hypre's nodal coarsening (SetNodal) is
+   converted at each setup; a Jacobian bordered by force-driven tools (src/solver/bordered.c) gives
+   its mesh block, in hypre's format, as it is. One V-cycle per application. hypre's nodal coarsening (SetNodal) is
    not offered: it needs every node to have all three unknowns, which is what a constrained
    component breaks.
 
@@ -41,7 +42,9 @@
    The unknowns of force-driven tools (a blank holder under its force: a few rows after the mesh's
    on the last rank, dense in the columns of the nodes the tool touches) are no elasticity for
    BoomerAMG to coarsen: the V-cycle works on the mesh block alone, and the tools' rows are
-   eliminated exactly around it through their Schur complement (BorderSetUp below). */
+   eliminated exactly around it through their Schur complement (BorderSetUp below). The mesh block
+   is the bordered Jacobian's own (-assembly_mat_type hypre: no copy) or, from an AIJ Jacobian,
+   copied into hypre's format at each setup (MeshBlock). */
 #define _DEFAULT_SOURCE /* ffs() in hypre's utilities header */
 #include <strings.h>
 
@@ -57,6 +60,7 @@
 
 #include <petscblaslapack.h>
 
+#include "bordered.h"
 #include "problem.h"
 #include "sheetcoarse.h"
 
@@ -391,8 +395,8 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
 {
   PC_AMGSys          *a = (PC_AMGSys *)pc->data;
   const MPI_Comm      comm = PetscObjectComm((PetscObject)pc);
-  Mat                 A, Aop;
-  PetscBool           ishypre;
+  Mat                 A, Aop, Ab = NULL;
+  PetscBool           ishypre, isbord;
   hypre_ParCSRMatrix *pA;
   HYPRE_Int          *dof = NULL;
   PetscInt            rstart, rend, nm = 0, nt = 0;
@@ -429,7 +433,15 @@ static PetscErrorCode PCSetUp_AMGSys(PC pc)
   PetscCall(BorderFree(a));
   PetscCall(MatDestroy(&a->hmat));
   A = Aop;
-  if (nt) { /* the mesh block, copied straight into hypre's format */
+  PetscCall(MatBorderedGetBlocks(Aop, &isbord, &Ab, NULL, NULL, NULL, NULL));
+  if (nt && isbord) { /* the Jacobian keeps its mesh block apart (bordered.h): taken as it is */
+    PetscCall(PetscObjectTypeCompare((PetscObject)Ab, MATHYPRE, &ishypre));
+    PetscCheck(ishypre, comm, PETSC_ERR_SUP, "-pc_type amgsys: a bordered Jacobian's mesh block must be in hypre's format (-assembly_mat_type hypre)");
+    PetscCall(PetscObjectReference((PetscObject)Ab));
+    a->hmat   = Ab;
+    a->border = PETSC_TRUE;
+    A         = a->hmat;
+  } else if (nt) { /* the mesh block, copied straight into hypre's format */
     PetscCall(MeshBlock(Aop, rstart, nm, nt, &a->ij, &a->hmat));
     a->border = PETSC_TRUE;
     A         = a->hmat;

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <string.h>
 #include "problem.h"
+#include "bordered.h"
 #include "lu.h"
 #include "options.h"
 
@@ -422,7 +423,7 @@ PetscErrorCode ProblemSetFromOptions(MPI_Comm comm, Problem *pb)
   PetscCallMPI(MPI_Comm_size(comm, &pb->size));
   PetscOptionsBegin(comm, NULL, "Assembly and linear solver", NULL);
   PetscCall(PetscOptionsBool("-assembly_coo", "Assemble the Jacobian in coordinate form (faster, more memory; not with contact pairs, whose pattern changes)", NULL, pb->assembly_coo, &pb->assembly_coo, &pb->assembly_coo_set));
-  PetscCall(PetscOptionsString("-assembly_mat_type", "Matrix type of the Jacobian (default: the mesh's, AIJ; hypre: assembled in hypre's format, which -pc_type hypre then uses without a copy)", NULL, pb->mat_type, pb->mat_type, sizeof(pb->mat_type), NULL));
+  PetscCall(PetscOptionsString("-assembly_mat_type", "Matrix type of the Jacobian (default: the mesh's, AIJ; hypre: assembled in hypre's format, which -pc_type hypre then uses without a copy; with force-driven tools its mesh block, bordered by their unknowns, for -pc_type amgsys)", NULL, pb->mat_type, pb->mat_type, sizeof(pb->mat_type), NULL));
   PetscCall(PetscOptionsBool("-assembly_near_null_space", "Attach the six rigid-body modes to the Jacobian as its near null space (GAMG's coarse spaces; BoomerAMG uses them only with -pc_hypre_boomeramg_vec_interp_variant, but PCHYPRE copies them)", NULL, pb->near_null, &pb->near_null, NULL));
   {
     const char *ords[] = {"mumps", "nd", "LUOrdering", "LU_ORDERING_", NULL};
@@ -492,9 +493,10 @@ static PetscErrorCode CreateHypreJacobian(Problem *pb, Mat *J)
 
 PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact contact, Material mat, Element el)
 {
-  Vec R;
-  KSP ksp;
-  PC  pc;
+  Vec       R;
+  KSP       ksp;
+  PC        pc;
+  PetscBool ishypre;
 
   PetscFunctionBeginUser;
   pb->mesh     = m;
@@ -563,10 +565,24 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
   PetscCall(DMCreateLocalVector(m->dm, &pb->Uloc));
   PetscCall(VecDuplicate(pb->Uloc, &pb->Floc));
 
-  PetscCheck(!pb->mat_type[0] || !pb->ntu, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s: not with force-driven tools (their unknowns extend an AIJ matrix); leave it out", pb->mat_type);
-  if (!pb->ntu) {
-    PetscBool ishypre;
-    PetscCall(PetscStrcmp(pb->mat_type, MATHYPRE, &ishypre));
+  PetscCall(PetscStrcmp(pb->mat_type, MATHYPRE, &ishypre));
+  {
+    PetscBool isaij;
+    PetscCall(PetscStrcmp(pb->mat_type, MATAIJ, &isaij));
+    PetscCheck(!pb->mat_type[0] || !pb->ntu || ishypre || isaij, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s: not with force-driven tools (their unknowns extend an AIJ matrix, or border a hypre one); give aij or hypre, or leave it out", pb->mat_type);
+  }
+  if (pb->ntu && ishypre) {
+    /* the mesh block in hypre's format, bordered by the tools' unknowns (include/bordered.h): the
+       one copy of the mesh block that -pc_type amgsys needs, by MatSetValues */
+    Mat A;
+    PetscCheck(!(pb->assembly_coo && pb->assembly_coo_set), pb->comm, PETSC_ERR_USER_INPUT, "-assembly_coo 1: not with -assembly_mat_type hypre and force-driven tools (the border is assembled by MatSetValues); leave it out");
+    pb->assembly_coo = PETSC_FALSE;
+    PetscCall(CreateHypreJacobian(pb, &A));
+    PetscCall(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+    PetscCall(MatCreateBordered(A, pb->ntu, &pb->J));
+    PetscCall(MatDestroy(&A));
+    pb->bordered = PETSC_TRUE;
+  } else if (!pb->ntu) {
     PetscCheck(!pb->mat_type[0] || ishypre || !pb->assembly_coo, pb->comm, PETSC_ERR_SUP, "-assembly_mat_type %s needs the MatSetValues assembly: add -assembly_coo 0", pb->mat_type);
     if (ishypre) PetscCall(CreateHypreJacobian(pb, &pb->J));
     else {
@@ -606,8 +622,15 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
     }
   }
   if (pb->near_null) PetscCall(SetNearNullSpace(pb, pb->J));
+  if (pb->bordered) { /* only amgsys takes it: a factorisation needs an assembled matrix */
+    PetscBool isamg;
+    PetscCall(SNESGetKSP(pb->snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, "amgsys", &isamg));
+    PetscCheck(isamg, pb->comm, PETSC_ERR_USER_INPUT, "-assembly_mat_type hypre with force-driven tools: the Jacobian is the mesh block bordered by the tools' unknowns, which only -pc_type amgsys takes; give -pc_type amgsys or leave -assembly_mat_type out");
+  }
   if (ContactNumPairs(contact)) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
-  else if (!(pb->ntu && pb->assembly_coo)) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE)); /* (not before the preallocation of an extended matrix) */
+  else if (!(pb->ntu && pb->assembly_coo) && !pb->bordered) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE)); /* (not before the preallocation of an extended matrix) */
   if (pb->assembly_coo) {
     /* coordinate assembly: the element blocks' (i, j) once, then the contact blocks; each
        Jacobian then only fills values */
