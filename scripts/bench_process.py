@@ -40,6 +40,12 @@ def run(binary, p, logdir, timeout):
         "-box_cells", f"{n},{n},{l}", "-options_file", SOLVER, "-output_interval", "0", "-load_max_steps", str(k),
         "-memory_view", "-output_dir", os.path.join(logdir, "out_" + tag(p))]
     path = os.path.join(logdir, tag(p) + ".log")
+    execute(cmd, path, timeout)
+    return path
+
+
+def execute(cmd, path, timeout):
+    """run cmd (niced) with its output in path, headed by the command, the load and the commit"""
     load = os.getloadavg()[0]
     mi = benchutil.machine_info(ROOT)
     t0 = time.monotonic()
@@ -52,7 +58,6 @@ def run(binary, p, logdir, timeout):
             f.write("# timeout\n")
     with open(path, "a") as f:
         f.write("# wall %.1f s\n" % (time.monotonic() - t0))
-    return path
 
 
 def parse(path, p):

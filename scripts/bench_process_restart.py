@@ -15,10 +15,9 @@ usage: scripts/bench_process_restart.py [--n 158] [--layers 4] [--steps 3] [--ch
 import argparse
 import csv
 import os
+import re
 import shutil
-import subprocess
 import sys
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -33,20 +32,6 @@ def command(binary, n, l, k, ranks, outdir, extra):
     return ([] if ranks == 1 else ["mpiexec", "--oversubscribe", "-n", str(ranks)]) + [binary, "-options_file", bench_process.CASE] + bench_process.BOX + [
         "-box_cells", f"{n},{n},{l}", "-options_file", bench_process.SOLVER, "-output_interval", "0", "-load_max_steps", str(k),
         "-output_dir", outdir] + extra
-
-
-def execute(cmd, path, timeout):
-    load = os.getloadavg()[0]
-    t0 = time.monotonic()
-    with open(path, "w") as f:
-        f.write("# " + " ".join(cmd) + "\n# load %.2f\n" % load)
-        f.flush()
-        try:
-            subprocess.run(["nice"] + cmd, cwd=ROOT, env=benchutil.run_env(), stdout=f, stderr=subprocess.STDOUT, timeout=timeout)
-        except subprocess.TimeoutExpired:
-            f.write("# timeout\n")
-    with open(path, "a") as f:
-        f.write("# wall %.1f s\n" % (time.monotonic() - t0))
 
 
 def rows(path):
@@ -106,7 +91,7 @@ def main():
         binary = benchutil.build_and_snapshot(ROOT, a.logdir, "bench_process_restart")
         shutil.rmtree(full, ignore_errors=True)
         shutil.rmtree(cont, ignore_errors=True)
-        execute(command(binary, a.n, a.layers, a.steps, a.ranks, full, ["-checkpoint_interval", str(a.checkpoint)]), lfull, a.timeout)
+        bench_process.execute(command(binary, a.n, a.layers, a.steps, a.ranks, full, ["-checkpoint_interval", str(a.checkpoint)]), lfull, a.timeout)
         # the checkpoint of step `checkpoint`: the run writes one every `checkpoint` steps, the last
         # one at the largest multiple below `steps`; a copy of the folder is continued from it
         last = (a.steps - 1) // a.checkpoint * a.checkpoint
@@ -115,14 +100,13 @@ def main():
         shutil.copytree(full, cont)
         ck = os.path.join(a.logdir, "checkpoint.h5")
         shutil.copy(os.path.join(full, "checkpoint.h5"), ck)
-        execute(command(binary, a.n, a.layers, a.steps, a.restart_ranks, cont, ["-restart", ck]), lcont, a.timeout)
+        bench_process.execute(command(binary, a.n, a.layers, a.steps, a.restart_ranks, cont, ["-restart", ck]), lcont, a.timeout)
     pf = bench_process.parse(lfull, (a.n, a.layers, a.steps, a.ranks))
     text = open(lcont).read()
     if "restart from" not in text:
         sys.exit(f"bench_process_restart: {lcont}: the run did not restart")
     dh, ch = largest_difference(os.path.join(full, "history.csv"), os.path.join(cont, "history.csv"), a.steps)
     dc, cc = largest_difference(os.path.join(full, "contact.csv"), os.path.join(cont, "contact.csv"), a.steps)
-    import re
     st = re.findall(r"^step +(\d+) +time ([\d.]+) +its +(\d+) +krylov (\d+) \(most (\d+)\).*elapsed ([\d.]+) s.*stage (\w+)", text, re.M)
     fst = re.findall(r"^step +(\d+) +time ([\d.]+) +its +(\d+) +krylov (\d+) \(most (\d+)\).*stage (\w+)", open(lfull).read(), re.M)
     cells = a.n * a.n * a.layers

@@ -29,9 +29,9 @@
    iterations grew to 200 per solve at 200 000 hexahedra as the contact spread.
    The Jacobian is used in hypre's format as it is (-assembly_mat_type hypre), any other type is
    converted at each setup; a Jacobian bordered by force-driven tools (src/solver/bordered.c) gives
-   its mesh block, in hypre's format, as it is. One V-cycle per application. hypre's nodal coarsening (SetNodal) is
-   not offered: it needs every node to have all three unknowns, which is what a constrained
-   component breaks.
+   its mesh block, in hypre's format, as it is. One V-cycle per application. hypre's nodal
+   coarsening (SetNodal) is not offered: it needs every node to have all three unknowns, which is
+   what a constrained component breaks.
 
    -pc_amgsys_sheet_spacing H (> 0; cases/solver_amgsys_sheet.opts) adds after each V-cycle a
    coarse correction by plate-like modes, y <- y + P A_c^-1 P^T (x - A y) (src/solver/
