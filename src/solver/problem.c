@@ -628,6 +628,11 @@ PetscErrorCode ProblemSetUp(Problem *pb, const Mesh *m, const BCs *bcs, Contact 
     PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(PetscObjectTypeCompare((PetscObject)pc, "amgsys", &isamg));
     PetscCheck(isamg, pb->comm, PETSC_ERR_USER_INPUT, "-assembly_mat_type hypre with force-driven tools: the Jacobian is the mesh block bordered by the tools' unknowns, which only -pc_type amgsys takes; give -pc_type amgsys or leave -assembly_mat_type out");
+    { /* PETSc's test compares assembled matrices only: with a bordered one it would print nothing */
+      PetscBool test;
+      PetscCall(PetscOptionsHasName(NULL, NULL, "-snes_test_jacobian", &test));
+      PetscCheck(!test, pb->comm, PETSC_ERR_USER_INPUT, "-snes_test_jacobian: not with the bordered Jacobian (-assembly_mat_type hypre and force-driven tools), which PETSc cannot compare; test with -assembly_mat_type aij, the same entries");
+    }
   }
   if (ContactNumPairs(contact)) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
   else if (!(pb->ntu && pb->assembly_coo) && !pb->bordered) PetscCall(MatSetOption(pb->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE)); /* (not before the preallocation of an extended matrix) */
