@@ -233,7 +233,13 @@ static PetscErrorCode ZeroRowsColumns_Bordered(Mat J, PetscInt n, const PetscInt
   PetscCall(MatShellGetContext(J, &b));
   PetscCheck(!x && !bb, comm, PETSC_ERR_SUP, "bordered Jacobian: MatZeroRowsColumns without x and b only");
   PetscCall(MatGetOwnershipRange(b->A, &rstart, &rend));
-  for (PetscInt i = 0; i < n; i++) PetscCheck(rows[i] >= rstart && rows[i] < rend, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "bordered Jacobian: row %" PetscInt_FMT " to zero is not one of this rank's mesh rows", rows[i]);
+  { /* every row this rank's own mesh row (checked on all ranks together: collectives follow) */
+    PetscInt bad = -1, gbad;
+    for (PetscInt i = 0; i < n; i++)
+      if (rows[i] < rstart || rows[i] >= rend) bad = rows[i];
+    PetscCall(MPIU_Allreduce(&bad, &gbad, 1, MPIU_INT, MPI_MAX, comm));
+    PetscCheck(gbad < 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "bordered Jacobian: row %" PetscInt_FMT " to zero is not one of its rank's mesh rows", gbad);
+  }
   /* every rank's rows: the columns to zero in the off-diagonal parts */
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(PetscMalloc2(size, &cnt, size + 1, &dsp));
@@ -274,7 +280,8 @@ static PetscErrorCode ZeroRowsColumns_Bordered(Mat J, PetscInt n, const PetscInt
           }
         }
     }
-    PetscCheck(nodiag < 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "bordered Jacobian: row %" PetscInt_FMT " has no diagonal entry in the mesh block's pattern", nodiag);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nodiag, 1, MPIU_INT, MPI_MAX, comm));
+    PetscCheck(nodiag < 0, comm, PETSC_ERR_PLIB, "bordered Jacobian: row %" PetscInt_FMT " has no diagonal entry in the mesh block's pattern", nodiag);
   }
   PetscCall(PetscObjectStateIncrease((PetscObject)b->A));
   for (PetscInt k = 0; k < b->nt; k++) { /* B's rows and C's columns (C stored transposed: rows) */
